@@ -1,0 +1,63 @@
+#pragma once
+// Scalar helpers used everywhere: constants, clamping, safe inverse trig, float error bounds.
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace prism {
+
+inline constexpr float kPi = 3.14159265358979323846f;
+inline constexpr float kInvPi = 0.31830988618379067154f;
+inline constexpr float kInv2Pi = 0.15915494309189533577f;
+inline constexpr float kInv4Pi = 0.07957747154594766788f;
+inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
+inline constexpr float kMachineEpsilon = std::numeric_limits<float>::epsilon() * 0.5f;
+
+template <typename T>
+constexpr T sqr(T x) { return x * x; }
+
+template <typename T>
+constexpr T lerp(float t, T a, T b) { return (1 - t) * a + t * b; }
+
+template <typename T, typename U, typename V>
+constexpr T clamp(T x, U lo, V hi) { return x < lo ? T(lo) : (x > hi ? T(hi) : x); }
+
+inline float safe_sqrt(float x) { return std::sqrt(std::max(0.f, x)); }
+inline double safe_sqrt(double x) { return std::sqrt(std::max(0., x)); }
+inline float safe_asin(float x) { return std::asin(clamp(x, -1.f, 1.f)); }
+inline float safe_acos(float x) { return std::acos(clamp(x, -1.f, 1.f)); }
+
+inline float radians(float degrees) { return degrees * (kPi / 180.f); }
+inline float degrees(float radians) { return radians * (180.f / kPi); }
+
+// gamma(n) = n·ε / (1 − n·ε): bound on the relative error of n chained float operations
+// (Higham, "Accuracy and Stability of Numerical Algorithms", §3.1; pbrt-v4 §6.8.1).
+constexpr float gamma(int n) { return (n * kMachineEpsilon) / (1 - n * kMachineEpsilon); }
+
+// The next representable float above / below v (for conservative rounding).
+inline float next_float_up(float v) {
+  if (std::isinf(v) && v > 0.f) return v;
+  if (v == -0.f) v = 0.f;
+  uint32_t bits = std::bit_cast<uint32_t>(v);
+  bits = v >= 0 ? bits + 1 : bits - 1;
+  return std::bit_cast<float>(bits);
+}
+inline float next_float_down(float v) {
+  if (std::isinf(v) && v < 0.f) return v;
+  if (v == 0.f) v = -0.f;
+  uint32_t bits = std::bit_cast<uint32_t>(v);
+  bits = v > 0 ? bits - 1 : bits + 1;
+  return std::bit_cast<float>(bits);
+}
+
+// Balance heuristic with β = 2 (Veach 1997, §9.2.3): weight of a sample from f among f and g.
+inline float power_heuristic(float pdf_f, float pdf_g) {
+  const float f = pdf_f * pdf_f, g = pdf_g * pdf_g;
+  if (std::isinf(f)) return 1.f;
+  return f + g > 0.f ? f / (f + g) : 0.f;
+}
+
+}  // namespace prism

@@ -1,0 +1,107 @@
+#include "base/transform.h"
+
+#include <cmath>
+
+namespace prism {
+
+Transform Transform::translate(const Vec3d& t) {
+  Transform r;
+  r.m[0][3] = t.x;
+  r.m[1][3] = t.y;
+  r.m[2][3] = t.z;
+  return r;
+}
+
+Transform Transform::scale(const Vec3d& s) {
+  Transform r;
+  r.m[0][0] = s.x;
+  r.m[1][1] = s.y;
+  r.m[2][2] = s.z;
+  return r;
+}
+
+Transform Transform::rotate(double x, double y, double z, double w) {
+  const double n = std::sqrt(x * x + y * y + z * z + w * w);
+  if (n > 0) x /= n, y /= n, z /= n, w /= n;
+  Transform r;
+  r.m[0] = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w), 0};
+  r.m[1] = {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w), 0};
+  r.m[2] = {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y), 0};
+  return r;
+}
+
+Transform Transform::from_column_major(const double* v) {
+  Transform r;
+  for (int col = 0; col < 4; ++col)
+    for (int row = 0; row < 4; ++row) r.m[row][col] = v[col * 4 + row];
+  return r;
+}
+
+Transform Transform::operator*(const Transform& b) const {
+  Transform r;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      double s = 0;
+      for (int k = 0; k < 4; ++k) s += m[i][k] * b.m[k][j];
+      r.m[i][j] = s;
+    }
+  return r;
+}
+
+Vec3d Transform::point(const Vec3d& p) const {
+  const double x = m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3];
+  const double y = m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3];
+  const double z = m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3];
+  const double w = m[3][0] * p.x + m[3][1] * p.y + m[3][2] * p.z + m[3][3];
+  return w == 1 ? Vec3d(x, y, z) : Vec3d(x, y, z) / w;
+}
+
+Vec3d Transform::vector(const Vec3d& v) const {
+  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+}
+
+Transform transpose(const Transform& t) {
+  Transform r;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) r.m[i][j] = t.m[j][i];
+  return r;
+}
+
+double determinant3x3(const Transform& t) {
+  const auto& m = t.m;
+  return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+         m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+}
+
+// General 4x4 inverse by Gauss-Jordan elimination with partial pivoting. A singular matrix
+// (e.g. a zero scale) yields all zeros, which downstream code treats as degenerate geometry.
+Transform inverse(const Transform& t) {
+  double a[4][8];
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      a[i][j] = t.m[i][j];
+      a[i][j + 4] = i == j ? 1 : 0;
+    }
+  for (int col = 0; col < 4; ++col) {
+    int pivot = col;
+    for (int r = col + 1; r < 4; ++r)
+      if (std::abs(a[r][col]) > std::abs(a[pivot][col])) pivot = r;
+    if (a[pivot][col] == 0) return Transform{{}};
+    if (pivot != col)
+      for (int j = 0; j < 8; ++j) std::swap(a[col][j], a[pivot][j]);
+    const double inv = 1 / a[col][col];
+    for (int j = 0; j < 8; ++j) a[col][j] *= inv;
+    for (int r = 0; r < 4; ++r) {
+      if (r == col || a[r][col] == 0) continue;
+      const double f = a[r][col];
+      for (int j = 0; j < 8; ++j) a[r][j] -= f * a[col][j];
+    }
+  }
+  Transform r;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) r.m[i][j] = a[i][j + 4];
+  return r;
+}
+
+}  // namespace prism

@@ -1,0 +1,31 @@
+#pragma once
+// Affine transforms as 4x4 double matrices (the scene loader composes node hierarchies in double
+// and rounds to float once, at the leaves).
+
+#include <array>
+
+#include "base/vec.h"
+
+namespace prism {
+
+struct Transform {
+  std::array<std::array<double, 4>, 4> m{{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
+
+  static Transform translate(const Vec3d& t);
+  static Transform scale(const Vec3d& s);
+  // Rotation from a unit quaternion (x, y, z, w), glTF's convention.
+  static Transform rotate(double qx, double qy, double qz, double qw);
+  // From 16 numbers in column-major order (glTF node.matrix).
+  static Transform from_column_major(const double* values);
+
+  Transform operator*(const Transform& b) const;
+  Vec3d point(const Vec3d& p) const;
+  Vec3d vector(const Vec3d& v) const;
+  bool operator==(const Transform&) const = default;
+};
+
+Transform inverse(const Transform& t);
+Transform transpose(const Transform& t);
+double determinant3x3(const Transform& t);  // of the linear part: < 0 means the transform mirrors
+
+}  // namespace prism
