@@ -1,0 +1,25 @@
+#pragma once
+// A linear RGB triple in some named colour space (glTF colours are linear Rec.709 / sRGB).
+
+#include <algorithm>
+
+namespace prism {
+
+struct Rgb {
+  float r = 0, g = 0, b = 0;
+  constexpr float operator[](int i) const { return i == 0 ? r : (i == 1 ? g : b); }
+  constexpr float& operator[](int i) { return i == 0 ? r : (i == 1 ? g : b); }
+  constexpr float max() const { return std::max(r, std::max(g, b)); }
+  constexpr Rgb operator*(float s) const { return {r * s, g * s, b * s}; }
+  constexpr Rgb operator/(float s) const { return {r / s, g / s, b / s}; }
+  constexpr bool operator==(const Rgb&) const = default;
+};
+
+// CIE 1931 tristimulus values.
+struct Xyz {
+  float x = 0, y = 0, z = 0;
+  constexpr Xyz operator+(const Xyz& o) const { return {x + o.x, y + o.y, z + o.z}; }
+  constexpr Xyz operator*(float s) const { return {x * s, y * s, z * s}; }
+};
+
+}  // namespace prism

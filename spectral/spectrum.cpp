@@ -1,0 +1,60 @@
+#include "spectral/spectrum.h"
+
+#include <algorithm>
+
+#include "base/error.h"
+#include "spectral/cie.h"
+
+namespace prism {
+
+TabulatedSpectrum::TabulatedSpectrum(std::vector<float> lambdas, std::vector<float> values)
+    : lambdas_(std::move(lambdas)), values_(std::move(values)) {
+  if (lambdas_.empty() || lambdas_.size() != values_.size())
+    fail("tabulated spectrum needs as many values as wavelengths (got {} and {})", lambdas_.size(), values_.size());
+  if (!std::is_sorted(lambdas_.begin(), lambdas_.end()))
+    fail("tabulated spectrum wavelengths must increase");
+}
+
+float TabulatedSpectrum::operator()(float lambda) const {
+  if (lambda <= lambdas_.front()) return values_.front();
+  if (lambda >= lambdas_.back()) return values_.back();
+  const size_t i = size_t(std::upper_bound(lambdas_.begin(), lambdas_.end(), lambda) - lambdas_.begin()) - 1;
+  const float t = (lambda - lambdas_[i]) / (lambdas_[i + 1] - lambdas_[i]);
+  return (1.f - t) * values_[i] + t * values_[i + 1];
+}
+
+float BlackbodySpectrum::planck(float lambda_nm, float kelvin) {
+  if (kelvin <= 0) return 0.f;
+  constexpr double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23;
+  const double l = lambda_nm * 1e-9;
+  return float((2 * h * c * c) / (std::pow(l, 5) * (std::exp((h * c) / (l * kb * kelvin)) - 1)));
+}
+
+BlackbodySpectrum::BlackbodySpectrum(float kelvin) : kelvin_(kelvin) {
+  const float lambda_peak = float(2.8977721e-3 / kelvin * 1e9);  // Wien's displacement law [nm]
+  normalization_ = 1.f / planck(lambda_peak, kelvin);
+}
+
+RgbAlbedoSpectrum::RgbAlbedoSpectrum(Rgb rgb) {
+  for (int c = 0; c < 3; ++c) rgb[c] = std::clamp(rgb[c], 0.f, 1.f);
+  rsp = RgbToSpectrumTable::srgb()(rgb);
+}
+
+RgbUnboundedSpectrum::RgbUnboundedSpectrum(Rgb rgb) {
+  for (int c = 0; c < 3; ++c) rgb[c] = std::max(rgb[c], 0.f);
+  const float m = rgb.max();
+  scale = 2 * m;
+  rsp = RgbToSpectrumTable::srgb()(scale > 0 ? rgb / scale : Rgb{0, 0, 0});
+}
+
+RgbIlluminantSpectrum::RgbIlluminantSpectrum(Rgb rgb) : shape(rgb), illuminant(&cie().d65) {}
+
+float RgbIlluminantSpectrum::operator()(float lambda) const { return shape(lambda) * (*illuminant)(lambda); }
+
+float max_value(const Spectrum& s) {
+  float m = 0;
+  for (float l = kLambdaMin; l <= kLambdaMax; l += 1.f) m = std::max(m, evaluate(s, l));
+  return m;
+}
+
+}  // namespace prism

@@ -1,0 +1,115 @@
+#pragma once
+// Spectral distributions, as a closed set of kinds (std::variant):
+//   ConstantSpectrum            c for every λ
+//   TabulatedSpectrum           piecewise-linear through measured (λ, value) points
+//   DenselySampledSpectrum      one value per nm (the CIE tables)
+//   BlackbodySpectrum           Planck's law, normalised to peak 1
+//   RgbAlbedoSpectrum           reflectance from RGB in [0,1]: bounded to [0,1]
+//   RgbUnboundedSpectrum        any non-negative RGB (e.g. absorption, scale × bounded shape)
+//   RgbIlluminantSpectrum       emission from RGB: unbounded shape × the colour space's white (D65)
+
+#include <memory>
+#include <variant>
+#include <vector>
+
+#include "spectral/rgb.h"
+#include "spectral/rgb_to_spectrum.h"
+#include "spectral/wavelengths.h"
+
+namespace prism {
+
+struct ConstantSpectrum {
+  float c = 0;
+  float operator()(float) const { return c; }
+};
+
+// Linear interpolation between samples; beyond the first / last sample the end value holds
+// (measured tables that stop short of 360 or 830 nm are extended flat, not dropped to 0).
+class TabulatedSpectrum {
+ public:
+  TabulatedSpectrum(std::vector<float> lambdas, std::vector<float> values);
+  float operator()(float lambda) const;
+  const std::vector<float>& lambdas() const { return lambdas_; }
+  const std::vector<float>& values() const { return values_; }
+
+ private:
+  std::vector<float> lambdas_, values_;
+};
+
+// Values at every integer nm from lambda_min; linear in between; 0 outside.
+class DenselySampledSpectrum {
+ public:
+  DenselySampledSpectrum() = default;
+  DenselySampledSpectrum(int lambda_min, std::vector<float> values)
+      : lambda_min_(lambda_min), values_(std::move(values)) {}
+  float operator()(float lambda) const {
+    const float x = lambda - float(lambda_min_);
+    if (!(x >= 0.f) || x > float(values_.size() - 1)) return 0.f;
+    const int i = std::min(int(x), int(values_.size()) - 2);
+    const float t = x - float(i);
+    return (1.f - t) * values_[i] + t * values_[i + 1];
+  }
+  int lambda_min() const { return lambda_min_; }
+  const std::vector<float>& values() const { return values_; }
+
+ private:
+  int lambda_min_ = 0;
+  std::vector<float> values_;
+};
+
+// Planck's law B(λ, T) = 2hc² / (λ⁵ (exp(hc / (λ k T)) − 1)), divided by its value at Wien's
+// peak λ_max = b / T so that the maximum is 1.
+class BlackbodySpectrum {
+ public:
+  explicit BlackbodySpectrum(float kelvin);
+  float operator()(float lambda) const { return planck(lambda, kelvin_) * normalization_; }
+  static float planck(float lambda_nm, float kelvin);
+
+ private:
+  float kelvin_, normalization_;
+};
+
+struct RgbAlbedoSpectrum {
+  explicit RgbAlbedoSpectrum(Rgb rgb);  // each channel clamped to [0, 1]
+  float operator()(float lambda) const { return rsp(lambda); }
+  RgbSigmoidPolynomial rsp;
+};
+
+// scale · s(λ) with scale = 2·max(rgb), so the sigmoid shape fits RGB / scale (max 1/2) with
+// room on both sides and stays smooth (pbrt-v4 §4.6.6).
+struct RgbUnboundedSpectrum {
+  explicit RgbUnboundedSpectrum(Rgb rgb);
+  float operator()(float lambda) const { return scale * rsp(lambda); }
+  float scale = 0;
+  RgbSigmoidPolynomial rsp;
+};
+
+struct RgbIlluminantSpectrum {
+  explicit RgbIlluminantSpectrum(Rgb rgb);
+  float operator()(float lambda) const;
+  RgbUnboundedSpectrum shape;
+  const DenselySampledSpectrum* illuminant;  // D65 with luminance Y = 1
+};
+
+using Spectrum = std::variant<ConstantSpectrum, TabulatedSpectrum, DenselySampledSpectrum, BlackbodySpectrum,
+                              RgbAlbedoSpectrum, RgbUnboundedSpectrum, RgbIlluminantSpectrum>;
+
+inline float evaluate(const Spectrum& s, float lambda) {
+  return std::visit([lambda](const auto& kind) { return kind(lambda); }, s);
+}
+
+template <int N>
+SampledSpectrum<N> sample(const Spectrum& s, const SampledWavelengths<N>& lambda) {
+  return std::visit(
+      [&lambda](const auto& kind) {
+        SampledSpectrum<N> r;
+        for (int i = 0; i < N; ++i) r[i] = kind(lambda[i]);
+        return r;
+      },
+      s);
+}
+
+// Largest value over [kLambdaMin, kLambdaMax] at 1 nm steps.
+float max_value(const Spectrum& s);
+
+}  // namespace prism

@@ -1,0 +1,81 @@
+#pragma once
+// SampledWavelengths<N>: the wavelengths one camera path carries, with their sampling pdfs.
+// Hero wavelength sampling (Wilkie et al. 2014, "Hero Wavelength Spectral Sampling"): one
+// uniform number u picks the hero; companions use u + i/N (mod 1), so the N wavelengths are
+// stratified over the pdf's CDF.
+
+#include <cmath>
+
+#include "spectral/sampled_spectrum.h"
+
+namespace prism {
+
+inline constexpr float kLambdaMin = 360.f;  // nm; the range of the CIE 1931 tables Prism ships
+inline constexpr float kLambdaMax = 830.f;
+
+// Visible-importance pdf p(λ) ∝ sech²(a(λ − μ)), a = 0.0072 nm⁻¹, μ = 538 nm, normalised on
+// [360, 830] nm (Radziszewski et al. 2009, "An Improved Technique for Full Spectral Rendering";
+// the fit pbrt-v4 uses). Its CDF is affine in tanh(a(λ − μ)), so sampling is closed form.
+namespace visible_pdf {
+inline constexpr double kA = 0.0072, kMu = 538.0;
+inline const double kTanhMin = std::tanh(kA * (kLambdaMin - kMu));
+inline const double kTanhMax = std::tanh(kA * (kLambdaMax - kMu));
+}  // namespace visible_pdf
+
+inline float visible_wavelengths_pdf(float lambda) {
+  using namespace visible_pdf;
+  if (lambda < kLambdaMin || lambda > kLambdaMax) return 0.f;
+  const double c = std::cosh(kA * (lambda - kMu));
+  return float(kA / ((kTanhMax - kTanhMin) * c * c));
+}
+
+inline float sample_visible_wavelengths(float u) {
+  using namespace visible_pdf;
+  const double t = kTanhMin + u * (kTanhMax - kTanhMin);
+  return std::clamp(float(kMu + std::atanh(t) / kA), kLambdaMin, kLambdaMax);
+}
+
+enum class WavelengthSampling { visible, uniform };
+
+template <int N>
+class SampledWavelengths {
+ public:
+  static SampledWavelengths sample(float u, WavelengthSampling mode = WavelengthSampling::visible) {
+    SampledWavelengths w;
+    for (int i = 0; i < N; ++i) {
+      float ui = u + float(i) / N;
+      if (ui >= 1.f) ui -= 1.f;
+      if (mode == WavelengthSampling::visible) {
+        w.lambda_[i] = sample_visible_wavelengths(ui);
+        w.pdf_[i] = visible_wavelengths_pdf(w.lambda_[i]);
+      } else {
+        w.lambda_[i] = kLambdaMin + ui * (kLambdaMax - kLambdaMin);
+        w.pdf_[i] = 1.f / (kLambdaMax - kLambdaMin);
+      }
+    }
+    return w;
+  }
+
+  float operator[](int i) const { return lambda_[i]; }
+  const SampledSpectrum<N>& pdf() const { return pdf_; }
+
+  // At an interface whose index of refraction varies with λ, only the hero wavelength (lane 0)
+  // can follow the refracted direction. The companions are dropped (pdf 0) and the hero's pdf
+  // divided by N, so that the lane average used by the film stays an unbiased estimator
+  // (pbrt-v4 §4.5.4, TerminateSecondary).
+  void terminate_secondary() {
+    if (secondary_terminated()) return;
+    for (int i = 1; i < N; ++i) pdf_[i] = 0.f;
+    pdf_[0] /= N;
+  }
+  bool secondary_terminated() const {
+    for (int i = 1; i < N; ++i)
+      if (pdf_[i] != 0.f) return false;
+    return true;
+  }
+
+ private:
+  SampledSpectrum<N> lambda_, pdf_;
+};
+
+}  // namespace prism
