@@ -1,0 +1,78 @@
+#include "render/camera.h"
+
+#include <cmath>
+
+#include "base/error.h"
+
+namespace prism {
+
+Camera::Camera(const CameraDesc& desc, int width, int height)
+    : projection_(desc.projection), width_(width), height_(height) {
+  if (width <= 0 || height <= 0) fail("image size {}x{} is not positive", width, height);
+  // Position and axes of the camera node, with any scale or shear removed.
+  eye_ = Vec3f(desc.to_world.point({0, 0, 0}));
+  const Vec3d f = desc.to_world.vector({0, 0, -1}), u = desc.to_world.vector({0, 1, 0});
+  forward_ = Vec3f(normalize(f));
+  right_ = Vec3f(normalize(cross(f, u)));
+  up_ = cross(right_, forward_);
+  if (!is_finite(forward_) || !is_finite(right_)) fail("camera '{}' has a degenerate transform", desc.name);
+  const float aspect = float(width) / float(height);
+  if (projection_ == CameraDesc::Projection::perspective) {
+    half_h_ = std::tan(desc.yfov / 2);
+    half_w_ = half_h_ * aspect;
+  } else {
+    half_h_ = desc.ymag;
+    half_w_ = desc.ymag * aspect;
+  }
+}
+
+Ray Camera::generate_ray(float x, float y) const {
+  const float sx = 2.f * x / float(width_) - 1.f;
+  const float sy = 1.f - 2.f * y / float(height_);
+  if (projection_ == CameraDesc::Projection::orthographic)
+    return {eye_ + right_ * (sx * half_w_) + up_ * (sy * half_h_), forward_, kInfinity};
+  return {eye_, normalize(forward_ + right_ * (sx * half_w_) + up_ * (sy * half_h_)), kInfinity};
+}
+
+CameraDesc framing_camera(const Bounds3f& bounds, float aspect) {
+  CameraDesc c;
+  c.name = "framing camera";
+  c.yfov = radians(45.f);
+  c.aspect = aspect;
+  const Vec3d center(bounds.centroid());
+  const Vec3d back = normalize(Vec3d(1, 1, 1));  // from the target towards the eye
+  const Vec3d right = normalize(cross(Vec3d(0, 1, 0), back));
+  const Vec3d up = cross(back, right);
+  const double tan_y = std::tan(c.yfov / 2), tan_x = tan_y * aspect;
+  // Each corner q must satisfy |q·right| ≤ tan_x · depth and |q·up| ≤ tan_y · depth, where
+  // depth = distance − q·back; the smallest distance meeting all eight is the answer.
+  double distance = 0;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3d corner((i & 1 ? bounds.hi : bounds.lo).x, (i & 2 ? bounds.hi : bounds.lo).y,
+                       (i & 4 ? bounds.hi : bounds.lo).z);
+    const Vec3d q = corner - center;
+    distance = std::max({distance, dot(q, back) + std::abs(dot(q, right)) / tan_x,
+                         dot(q, back) + std::abs(dot(q, up)) / tan_y});
+  }
+  if (!(distance > 0)) distance = 1;
+  const Vec3d eye = center + back * (distance * 1.02);
+  // Columns: right, up, back (= local +z, since the camera looks down −z), eye.
+  Transform& m = c.to_world;
+  for (int r = 0; r < 3; ++r) {
+    m.m[r][0] = right[r];
+    m.m[r][1] = up[r];
+    m.m[r][2] = back[r];
+    m.m[r][3] = eye[r];
+  }
+  return c;
+}
+
+Vec2i resolve_resolution(int width, int height, const CameraDesc& camera, int default_width) {
+  const float aspect = camera.aspect.value_or(1.f);
+  if (width > 0 && height > 0) return {width, height};
+  if (width > 0) return {width, std::max(1, int(std::lround(width / aspect)))};
+  if (height > 0) return {std::max(1, int(std::lround(height * aspect))), height};
+  return {default_width, std::max(1, int(std::lround(default_width / aspect)))};
+}
+
+}  // namespace prism

@@ -1,0 +1,35 @@
+#pragma once
+// Pinhole perspective and orthographic cameras (glTF conventions: the camera looks down its
+// local −z with +y up). Film coordinates: sx ∈ [−1, 1] left to right, sy ∈ [−1, 1] bottom to top.
+
+#include "base/ray.h"
+#include "scene/scene.h"
+
+namespace prism {
+
+class Camera {
+ public:
+  Camera(const CameraDesc& desc, int width, int height);
+
+  // The ray through film position (x, y) in pixels, (0, 0) = top-left corner of the image.
+  Ray generate_ray(float x, float y) const;
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  CameraDesc::Projection projection_;
+  Vec3f eye_, forward_, right_, up_;
+  float half_w_, half_h_;  // perspective: tangents of the half angles; orthographic: half extents
+  int width_, height_;
+};
+
+// A camera that frames the whole scene: looks at the bounds' centre from the direction
+// (1, 1, 1)/√3 with a 45° vertical field of view, from the nearest distance at which all eight
+// corners are inside the frustum, plus 2%.
+CameraDesc framing_camera(const Bounds3f& bounds, float aspect);
+
+// Image size from the requested width / height (0 = not given) and the camera's aspect ratio.
+Vec2i resolve_resolution(int width, int height, const CameraDesc& camera, int default_width = 640);
+
+}  // namespace prism

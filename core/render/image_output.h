@@ -1,0 +1,40 @@
+#pragma once
+// Image files: scene-referred OpenEXR (float32 or half RGBA, chromaticities and render metadata
+// in the header) and 8-bit PNG previews. Both are written atomically: to a temporary file in
+// the destination folder, renamed into place only when complete, so a failed or interrupted
+// render never leaves a half-written image.
+
+#include <filesystem>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "spectral/color_pipeline.h"
+
+namespace prism {
+
+struct ExrAttribute {
+  std::string name;
+  std::variant<std::string, int, double> value;
+};
+
+struct ExrImage {
+  int width = 0, height = 0;
+  std::vector<float> rgb;  // interleaved, top row first
+  Chromaticities chromaticities;
+  std::vector<ExrAttribute> metadata;
+};
+
+void write_exr(const std::filesystem::path& file, const ExrImage& image, bool half);
+
+// rgb holds display-encoded values in [0, 1] (values outside are clamped).
+void write_png(const std::filesystem::path& file, int width, int height, const std::vector<float>& rgb);
+
+// Reads the RGB channels of an OpenEXR file (for tests and convergence references).
+struct RgbImage {
+  int width = 0, height = 0;
+  std::vector<float> rgb;
+};
+RgbImage read_exr(const std::filesystem::path& file);
+
+}  // namespace prism

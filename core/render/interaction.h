@@ -1,0 +1,24 @@
+#pragma once
+// A ray's hit on a surface, in world space, with what shading and ray spawning need.
+
+#include <cstdint>
+
+#include "base/ray.h"
+#include "materials/material.h"
+
+namespace prism {
+
+struct SurfaceInteraction {
+  Vec3f p;        // hit point (barycentric interpolation of the vertices)
+  Vec3f p_error;  // per-axis bound on p's rounding error
+  Vec3f n;        // unit geometric normal; the glTF front side (counter-clockwise winding)
+  Vec3f ns;       // unit shading normal, on the same side as n
+  Vec3f wo;       // unit direction back along the incoming ray
+  float t;        // distance along the incoming ray
+  const Material* material;
+  uint32_t instance, prim;
+
+  Ray spawn(const Vec3f& w) const { return spawn_ray(p, p_error, n, w); }
+};
+
+}  // namespace prism

@@ -1,0 +1,103 @@
+#pragma once
+// Light sources as the renderer samples them: emissive triangles (area lights), point lights
+// and a constant environment. Each offers sample_li (a direction towards the light from a
+// point, with its solid-angle pdf and the shadow ray to test) and its emitted power for the
+// light sampler.
+
+#include <optional>
+#include <variant>
+
+#include "base/warp.h"
+#include "render/interaction.h"
+#include "spectral/spectrum.h"
+
+namespace prism {
+
+// The shading point a light is sampled from.
+struct LightSampleContext {
+  Vec3f p, p_error, n;
+};
+
+template <int N>
+struct LightSample {
+  SampledSpectrum<N> L;  // radiance arriving along wi (for point lights: intensity / distance²)
+  Vec3f wi;
+  float pdf;             // solid-angle density; 1 for a delta light
+  Ray shadow_ray;
+};
+
+// One emissive triangle, uniform radiance, emitting from its front side (or both).
+struct AreaLight {
+  Vec3f p0, p1, p2;
+  Vec3f n;  // unit front normal
+  float area;
+  const Spectrum* radiance;
+  bool two_sided;
+
+  bool emits_towards(const Vec3f& w) const { return two_sided || dot(n, w) > 0; }
+
+  // pdf of sampling direction towards point `p_light` at distance d: d² / (|cos θ_light| · A).
+  float pdf_solid_angle(float distance, const Vec3f& w_to_light) const {
+    const float cos_l = std::abs(dot(n, w_to_light));
+    return cos_l > 0 ? distance * distance / (cos_l * area) : 0.f;
+  }
+
+  template <int N>
+  std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f u,
+                                          const SampledWavelengths<N>& lambda) const {
+    const Vec3f b = sample_uniform_triangle(u);
+    const Vec3f p = p0 * b.x + p1 * b.y + p2 * b.z;
+    const Vec3f p_error = (abs(p0 * b.x) + abs(p1 * b.y) + abs(p2 * b.z)) * gamma(6);
+    Vec3f wi = p - ctx.p;
+    const float distance = length(wi);
+    if (distance == 0.f) return std::nullopt;
+    wi = wi / distance;
+    if (!emits_towards(-wi)) return std::nullopt;
+    const float pdf = pdf_solid_angle(distance, wi);
+    if (!(pdf > 0.f) || std::isinf(pdf)) return std::nullopt;
+    return LightSample<N>{sample(*radiance, lambda), wi, pdf,
+                          spawn_ray_to(ctx.p, ctx.p_error, ctx.n, p, p_error, n)};
+  }
+};
+
+struct PointLightSource {
+  Vec3f position;
+  const Spectrum* intensity;
+
+  template <int N>
+  std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f,
+                                          const SampledWavelengths<N>& lambda) const {
+    Vec3f wi = position - ctx.p;
+    const float d2 = length_squared(wi);
+    if (d2 == 0.f) return std::nullopt;
+    wi = wi / std::sqrt(d2);
+    return LightSample<N>{sample(*intensity, lambda) / d2, wi, 1.f,
+                          spawn_ray_to(ctx.p, ctx.p_error, ctx.n, position, {}, {})};
+  }
+};
+
+// Constant radiance from every direction, sampled uniformly over the sphere.
+struct EnvironmentLight {
+  const Spectrum* radiance;
+
+  template <int N>
+  std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f u,
+                                          const SampledWavelengths<N>& lambda) const {
+    const Vec3f wi = sample_uniform_sphere(u);
+    return LightSample<N>{sample(*radiance, lambda), wi, uniform_sphere_pdf(),
+                          spawn_ray(ctx.p, ctx.p_error, ctx.n, wi)};
+  }
+  float pdf_li() const { return uniform_sphere_pdf(); }
+};
+
+using Light = std::variant<AreaLight, PointLightSource, EnvironmentLight>;
+
+inline bool is_delta(const Light& light) { return std::holds_alternative<PointLightSource>(light); }
+
+template <int N>
+std::optional<LightSample<N>> sample_li(const Light& light, const LightSampleContext& ctx, Vec2f u,
+                                        const SampledWavelengths<N>& lambda) {
+  return std::visit([&](const auto& l) { return l.sample_li(ctx, u, lambda); }, light);
+}
+
+}  // namespace prism

@@ -1,0 +1,21 @@
+#pragma once
+// Unidirectional path tracing over a path's sampled wavelengths, with next-event estimation
+// and multiple importance sampling of light and BSDF samples (power heuristic; Veach 1997,
+// ch. 9), and Russian roulette on the path throughput (Arvo & Kirk 1990).
+
+#include "base/sampler.h"
+#include "render/ray_counters.h"
+#include "render/world.h"
+
+namespace prism {
+
+struct PathOptions {
+  int max_depth = 16;  // bounces; 0 shows only what the camera sees emitting
+};
+
+// Radiance arriving along `ray` at the path's wavelengths.
+template <int N>
+SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths<N>& lambda,
+                                 IndependentSampler& sampler, const PathOptions& options, RayCounters& counters);
+
+}  // namespace prism

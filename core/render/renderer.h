@@ -1,0 +1,42 @@
+#pragma once
+// Renders a World through a Camera into CIE XYZ: 16×16 tiles over all allowed threads, each
+// pixel's samples seeded by (pixel, sample index, seed), so the image is the same bit for bit
+// whatever the thread count.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/camera.h"
+#include "render/path_integrator.h"
+
+namespace prism {
+
+struct RenderOptions {
+  int spp = 16;
+  uint64_t seed = 0;
+  int threads = 0;                  // 0: all hardware threads
+  int wavelengths = kDefaultWavelengths;  // per path: 1, 4 or 8
+  PathOptions path;
+  bool progress = true;
+};
+
+struct RenderStats {
+  RayCounters rays;
+  uint64_t samples = 0;
+  uint64_t invalid_samples = 0;     // NaN or Inf estimates, counted and dropped (added as 0)
+  double seconds = 0;
+
+  double samples_per_second() const { return seconds > 0 ? samples / seconds : 0; }
+  std::string summary() const;
+};
+
+struct RenderResult {
+  int width, height;
+  std::vector<float> xyz;           // interleaved, width × height × 3, top row first
+  RenderStats stats;
+};
+
+RenderResult render(const World& world, const Camera& camera, const RenderOptions& options);
+
+}  // namespace prism
