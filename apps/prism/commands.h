@@ -1,0 +1,10 @@
+#pragma once
+// The subcommands of the `prism` executable; each registers its options and its action.
+
+#include <CLI/CLI.hpp>
+
+namespace prism {
+
+void add_render_command(CLI::App& app);
+
+}  // namespace prism

@@ -1,0 +1,26 @@
+// prism: the command-line front end. Errors in input print one clear message and exit with 1;
+// usage errors exit with 2 (CLI11's codes).
+
+#include <cstdio>
+
+#include "apps/prism/commands.h"
+#include "base/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app("Prism: a spectral path tracer (glTF 2.0 in, scene-referred OpenEXR out)", "prism");
+  app.set_version_flag("--version", "Prism " PRISM_VERSION);
+  app.require_subcommand(1);
+  prism::add_render_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const prism::Error& e) {
+    std::fprintf(stderr, "prism: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "prism: internal error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
