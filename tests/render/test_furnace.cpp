@@ -1,0 +1,65 @@
+// Furnace tests: scenes whose exact answer is known. A convex Lambertian object under a uniform
+// environment of radiance 1 reflects its albedo (every point sees only the environment); inside
+// a closed sphere of albedo ρ that emits Le, every point sees Le / (1 − ρ).
+
+#include <catch2/catch.hpp>
+
+#include "support/test_scenes.h"
+
+using namespace prism;
+
+namespace {
+
+// Renders a Lambertian sphere of the given albedo under a uniform environment of radiance 1.
+// (Many samples: the blue channel, built mostly from z̄ near 450 nm where the visible pdf is low,
+// is the noisiest, and the checks require its standard error to be ≤ 0.0025.)
+test::TestRender render_env_furnace(float albedo, int spp) {
+  Scene scene;
+  scene.materials.push_back(test::diffuse({albedo, albedo, albedo}));
+  test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 3, 0));
+  scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
+  return test::render_rgb(scene, test::look_at({0, 0, 5.f}, {0, 0, 0}, 30.f), 32, 32, spp);
+}
+
+}  // namespace
+
+TEST_CASE("furnace: albedo-1 sphere under a uniform environment of radiance 1 renders 1") {
+  const auto img = render_env_furnace(1.f, 1024);
+  CHECK(img.stats.invalid_samples == 0);
+  test::check_mean(img, 0, 0, 32, 32, 1.0, 0.01);
+  // The centre of the image is all sphere: the object itself, not just the background, is right.
+  test::check_mean(img, 10, 10, 22, 22, 1.0, 0.01);
+}
+
+TEST_CASE("furnace: albedo-0.5 sphere under a uniform environment renders 0.5") {
+  const auto img = render_env_furnace(0.5f, 1024);
+  test::check_mean(img, 10, 10, 22, 22, 0.5, 0.01);
+  test::check_mean(img, 0, 0, 32, 3, 1.0, 0.01);  // top rows: sky
+}
+
+TEST_CASE("furnace: inside a closed emitting sphere the radiance is Le / (1 - albedo)") {
+  // Albedo 0.5, Le 0.5: L = 1 after infinitely many bounces (Russian roulette keeps it unbiased).
+  Scene scene;
+  Material m = test::diffuse({0.5f, 0.5f, 0.5f});
+  m.emission = RgbIlluminantSpectrum(Rgb{0.5f, 0.5f, 0.5f});
+  m.double_sided = true;
+  scene.materials.push_back(m);
+  test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 2, 0));
+  const auto img = test::render_rgb(scene, test::look_at({0, 0, 0.3f}, {0, 0, -1}, 60.f), 32, 32, 128, 1000);
+  CHECK(img.stats.invalid_samples == 0);
+  test::check_mean(img, 0, 0, 32, 32, 1.0, 0.01);
+}
+
+TEST_CASE("images are identical whatever the thread count") {
+  Scene scene;
+  scene.materials.push_back(test::diffuse({0.7f, 0.4f, 0.2f}));
+  test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 2, 0));
+  scene.point_lights.push_back({"lamp", {2, 2, 2}, RgbIlluminantSpectrum(Rgb{10, 10, 10})});
+  scene.environment = RgbIlluminantSpectrum(Rgb{0.2f, 0.3f, 0.5f});
+  const auto camera = test::look_at({0, 0, 4}, {0, 0, 0}, 40.f);
+  const auto one = test::render_rgb(scene, camera, 40, 30, 4, 16, 7, 1);
+  const auto two = test::render_rgb(scene, camera, 40, 30, 4, 16, 7, 2);
+  CHECK(one.rgb == two.rgb);
+  const auto other_seed = test::render_rgb(scene, camera, 40, 30, 4, 16, 8, 2);
+  CHECK(one.rgb != other_seed.rgb);
+}

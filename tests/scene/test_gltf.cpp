@@ -1,0 +1,182 @@
+// glTF loading: a minimal file in all its variants, and malformed files that must fail with a
+// clear message (and, through the CLI, a non-zero exit and no output file).
+
+#include <catch2/catch.hpp>
+
+#include <cstring>
+#include <fstream>
+
+#include "base/error.h"
+#include "base/log.h"
+#include "scene/gltf_loader.h"
+#include "scene/scene_features.h"
+#include "spectral/cie.h"
+#include "support/test_scenes.h"
+
+using namespace prism;
+
+namespace {
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    const uint32_t n = (uint32_t(bytes[i]) << 16) | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
+                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
+    out += table[(n >> 18) & 63];
+    out += table[(n >> 12) & 63];
+    out += i + 1 < bytes.size() ? table[(n >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? table[n & 63] : '=';
+  }
+  return out;
+}
+
+// One triangle (u16 indices), one emissive material, a camera and a point light, nested nodes.
+struct TriangleGltf {
+  std::vector<uint16_t> indices = {0, 1, 2};
+  std::string buffer_uri;   // empty: embedded data URI
+  std::string extra_json;   // spliced into the top-level object
+  std::string node_extra;   // spliced into the mesh node
+
+  std::string json() const {
+    std::vector<unsigned char> bytes(36 + 8, 0);
+    const float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    std::memcpy(bytes.data(), pos, 36);
+    std::memcpy(bytes.data() + 36, indices.data(), 2 * indices.size());
+    const std::string uri = buffer_uri.empty() ? "data:application/octet-stream;base64," + base64(bytes) : buffer_uri;
+    return R"({
+  "asset": {"version": "2.0"},
+  "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_emissive_strength"],
+  "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": 10, "color": [1, 0.5, 0.25]}]}},
+  "scene": 0,
+  "scenes": [{"nodes": [0]}],
+  "nodes": [
+    {"name": "root", "translation": [0, 0, 1], "children": [1, 2, 3]},
+    {"name": "tri", "mesh": 0, "scale": [2, 2, 2])" + node_extra + R"(},
+    {"name": "cam", "camera": 0, "translation": [0, 0, 5]},
+    {"name": "lamp", "translation": [0, 2, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}}
+  ],
+  "cameras": [{"type": "perspective", "perspective": {"yfov": 0.7, "aspectRatio": 1.5, "znear": 0.1}}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+  "materials": [{"name": "glow", "emissiveFactor": [1, 1, 1],
+                 "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 5}},
+                 "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1]}}],
+  "buffers": [{"byteLength": 44, "uri": ")" + uri + R"("}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}
+  ])" + extra_json + "\n}\n";
+  }
+};
+
+std::filesystem::path write(const std::filesystem::path& dir, const std::string& name, const std::string& text) {
+  const auto path = dir / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("a minimal glTF loads with its hierarchy, camera, light and emissive material") {
+  const auto dir = test::temp_dir("gltf_ok");
+  const Scene scene = load_gltf(write(dir, "tri.gltf", TriangleGltf{}.json()));
+  REQUIRE(scene.meshes.size() == 1);
+  REQUIRE(scene.instances.size() == 1);
+  CHECK(scene.triangle_count() == 1);
+  // Node transform: parent translation (0,0,1) · child scale 2.
+  const Vec3d p = scene.instances[0].to_world.point({1, 0, 0});
+  CHECK(p.x == Approx(2));
+  CHECK(p.z == Approx(1));
+  REQUIRE(scene.cameras.size() == 1);
+  CHECK(scene.cameras[0].yfov == Approx(0.7f));
+  CHECK(*scene.cameras[0].aspect == Approx(1.5f));
+  REQUIRE(scene.point_lights.size() == 1);
+  CHECK(scene.point_lights[0].position.y == Approx(2));
+  CHECK(scene.point_lights[0].position.z == Approx(1));
+  REQUIRE(scene.materials.size() == 1);
+  REQUIRE(scene.materials[0].emission.has_value());
+  CHECK(spectrum_to_xyz(*scene.materials[0].emission).y == Approx(5).epsilon(0.01));  // strength 5 × white
+  const SceneFeatures f = analyze_features(scene);
+  CHECK(f.emissive_triangles);
+  CHECK(f.point_lights);
+  CHECK_FALSE(f.environment);
+}
+
+TEST_CASE("malformed glTF files fail with a message naming the file and the problem") {
+  const auto dir = test::temp_dir("gltf_bad");
+  const std::string good = TriangleGltf{}.json();
+
+  const auto truncated = write(dir, "truncated.gltf", good.substr(0, good.size() / 2));
+  CHECK_THROWS_WITH(load_gltf(truncated), Catch::Contains("truncated.gltf") && Catch::Contains("not a valid glTF"));
+
+  TriangleGltf bad_index;
+  bad_index.indices = {0, 1, 7};
+  const auto out_of_range = write(dir, "index.gltf", bad_index.json());
+  CHECK_THROWS_WITH(load_gltf(out_of_range), Catch::Contains("index.gltf") && Catch::Contains("index 7 out of range"));
+
+  TriangleGltf missing;
+  missing.buffer_uri = "missing.bin";
+  const auto missing_buffer = write(dir, "missing.gltf", missing.json());
+  CHECK_THROWS_WITH(load_gltf(missing_buffer), Catch::Contains("missing.gltf") && Catch::Contains("missing.bin"));
+
+  TriangleGltf required;
+  required.extra_json = R"(, "extensionsRequired": ["KHR_draco_mesh_compression"])";
+  CHECK_THROWS_WITH(load_gltf(write(dir, "draco.gltf", required.json())),
+                    Catch::Contains("requires extension KHR_draco_mesh_compression"));
+
+  TriangleGltf bad_mesh;
+  bad_mesh.node_extra = R"(, "children": [9])";
+  CHECK_THROWS_WITH(load_gltf(write(dir, "child.gltf", bad_mesh.json())), Catch::Contains("node 9"));
+
+  TriangleGltf cycle;
+  cycle.node_extra = R"(, "children": [0])";
+  CHECK_THROWS_WITH(load_gltf(write(dir, "cycle.gltf", cycle.json())), Catch::Contains("cycle"));
+
+  CHECK_THROWS_WITH(load_gltf(dir / "absent.gltf"), Catch::Contains("absent.gltf") && Catch::Contains("no such file"));
+  CHECK_THROWS_AS(load_gltf(write(dir, "empty.glb", "glTF")), Error);
+}
+
+TEST_CASE("prism render exits non-zero on a malformed file and writes no output") {
+  const auto dir = test::temp_dir("gltf_cli");
+  TriangleGltf bad;
+  bad.indices = {0, 1, 9};
+  const auto scene = write(dir, "bad.gltf", bad.json());
+  const auto out = dir / "out.exr";
+  std::string err;
+  const int code = test::run_prism("render \"" + scene.string() + "\" -o \"" + out.string() + "\" --spp 1", &err);
+  CHECK(code != 0);
+  CHECK(err.find("bad.gltf") != std::string::npos);
+  CHECK(err.find("out of range") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(out));
+  CHECK(std::filesystem::is_empty(dir) == false);  // only the scene file is there
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) CHECK(entry.path().filename() == "bad.gltf");
+
+  // Bad options fail before any work, too.
+  CHECK(test::run_prism("render \"" + scene.string() + "\" -o \"" + out.string() + "\" --colorspace nonsense") != 0);
+  CHECK_FALSE(std::filesystem::exists(out));
+}
+
+TEST_CASE("the default scene loads: a closed Cornell box with a light and a camera") {
+  const Scene scene = load_gltf(std::filesystem::path(PRISM_SOURCE_DIR) / "data/scenes/cornell.gltf");
+  CHECK(scene.cameras.size() == 1);
+  const SceneFeatures f = analyze_features(scene);
+  CHECK(f.emissive_triangles);
+  CHECK(scene.triangle_count() >= 30);
+}
+
+TEST_CASE("every shared glTF asset loads", "[shared]") {
+  if (!test::shared_assets_present()) {
+    WARN("../shared is absent: skipping");
+    return;
+  }
+  log::set_level(log::Level::quiet);
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(test::shared_dir() / "assets" / "gltf")) {
+    const auto ext = entry.path().extension();
+    if (ext != ".gltf" && ext != ".glb") continue;
+    INFO(entry.path().string());
+    const Scene scene = load_gltf(entry.path());
+    CHECK(scene.triangle_count() > 0);
+  }
+  log::set_level(log::Level::info);
+}

@@ -1,0 +1,77 @@
+// Wavelength sampling: the visible pdf is a normalised density that its sampler follows, and
+// hero-wavelength estimates of spectral integrals are unbiased, with or without termination.
+
+#include <catch2/catch.hpp>
+
+#include "spectral/cie.h"
+#include "spectral/wavelengths.h"
+
+using namespace prism;
+
+TEST_CASE("visible wavelength pdf integrates to 1 over 360-830 nm") {
+  double integral = 0;
+  const int steps = 470000;
+  const double h = (kLambdaMax - kLambdaMin) / steps;
+  for (int i = 0; i < steps; ++i) integral += visible_wavelengths_pdf(float(kLambdaMin + (i + 0.5) * h)) * h;
+  CHECK(integral == Approx(1.0).epsilon(1e-5));
+  CHECK(visible_wavelengths_pdf(359.f) == 0.f);
+  CHECK(visible_wavelengths_pdf(831.f) == 0.f);
+}
+
+TEST_CASE("visible wavelength sampling inverts the pdf's CDF") {
+  // Numerically integrated CDF at the sampled wavelength must equal u.
+  for (float u : {0.001f, 0.1f, 0.25f, 0.5f, 0.75f, 0.9f, 0.999f}) {
+    const float lambda = sample_visible_wavelengths(u);
+    REQUIRE(lambda >= kLambdaMin);
+    REQUIRE(lambda <= kLambdaMax);
+    double cdf = 0;
+    const int steps = 20000;
+    const double h = (lambda - kLambdaMin) / steps;
+    for (int i = 0; i < steps; ++i) cdf += visible_wavelengths_pdf(float(kLambdaMin + (i + 0.5) * h)) * h;
+    CHECK(cdf == Approx(u).margin(1e-5));
+  }
+}
+
+// Estimates ∫ȳ dλ from M stratified paths of N hero-rotated wavelengths.
+template <int N>
+double estimate_y_integral(int paths, WavelengthSampling mode, bool terminate) {
+  double sum = 0;
+  for (int k = 0; k < paths; ++k) {
+    auto lambda = SampledWavelengths<N>::sample((k + 0.5f) / paths, mode);
+    if (terminate) lambda.terminate_secondary();
+    SampledSpectrum<N> y;
+    for (int i = 0; i < N; ++i) y[i] = cie().y(lambda[i]);
+    sum += safe_div(y, lambda.pdf()).average();
+  }
+  return sum / paths;
+}
+
+TEST_CASE("stratified importance-sampled estimate of the integral of ybar matches the table to 1e-3") {
+  const double reference = cie().y_integral;  // Σ ȳ · 1 nm
+  CHECK(estimate_y_integral<4>(4096, WavelengthSampling::visible, false) == Approx(reference).epsilon(1e-3));
+  CHECK(estimate_y_integral<1>(4096, WavelengthSampling::visible, false) == Approx(reference).epsilon(1e-3));
+  CHECK(estimate_y_integral<8>(4096, WavelengthSampling::visible, false) == Approx(reference).epsilon(1e-3));
+  CHECK(estimate_y_integral<4>(4096, WavelengthSampling::uniform, false) == Approx(reference).epsilon(1e-3));
+}
+
+TEST_CASE("terminating the secondary wavelengths keeps the estimator unbiased") {
+  const double reference = cie().y_integral;
+  // Only the hero lane remains: the stratification over the N lanes is lost, so use more paths.
+  CHECK(estimate_y_integral<4>(1 << 16, WavelengthSampling::visible, true) == Approx(reference).epsilon(1e-3));
+  auto lambda = SampledWavelengths<4>::sample(0.3f);
+  const float hero_pdf = lambda.pdf()[0];
+  lambda.terminate_secondary();
+  CHECK(lambda.secondary_terminated());
+  CHECK(lambda.pdf()[0] == Approx(hero_pdf / 4));
+  for (int i = 1; i < 4; ++i) CHECK(lambda.pdf()[i] == 0.f);
+  lambda.terminate_secondary();  // idempotent
+  CHECK(lambda.pdf()[0] == Approx(hero_pdf / 4));
+}
+
+TEST_CASE("hero wavelengths are stratified: one per 1/N of the CDF") {
+  const auto lambda = SampledWavelengths<4>::sample(0.1f);
+  CHECK(lambda[0] == Approx(sample_visible_wavelengths(0.1f)));
+  CHECK(lambda[1] == Approx(sample_visible_wavelengths(0.35f)));
+  CHECK(lambda[2] == Approx(sample_visible_wavelengths(0.6f)));
+  CHECK(lambda[3] == Approx(sample_visible_wavelengths(0.85f)));
+}

@@ -1,0 +1,57 @@
+#pragma once
+// Scenes, cameras and helpers built in code for the test suites.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+namespace prism::test {
+
+// Closed icosphere with flat faces wound counter-clockwise seen from outside (no vertex normals).
+Mesh make_icosphere(const Vec3f& center, float radius, int subdivisions, uint32_t material);
+
+// Quad (two triangles) at corner + s·u + t·v, s, t ∈ [0, 1]; front side = cross(u, v).
+Mesh make_quad(const Vec3f& corner, const Vec3f& u, const Vec3f& v, uint32_t material);
+
+// Perspective camera at eye looking at target.
+CameraDesc look_at(const Vec3f& eye, const Vec3f& target, float yfov_degrees);
+
+Material diffuse(Rgb albedo, const std::string& name = "diffuse");
+
+// Adds a mesh with one identity instance; returns the mesh index.
+uint32_t add_mesh(Scene& scene, Mesh mesh);
+
+struct TestRender {
+  int width, height;
+  std::vector<float> rgb;  // linear Rec.709, interleaved
+  RenderStats stats;
+
+  double mean(int channel) const;
+  // Mean of one channel over the pixels in the rectangle [x0,x1) × [y0,y1).
+  double mean(int channel, int x0, int y0, int x1, int y1) const;
+  // Standard error of that mean, from the spread of the (independent) pixel estimates.
+  double standard_error(int channel, int x0, int y0, int x1, int y1) const;
+};
+
+// Checks that every channel's mean over [x0,x1) × [y0,y1) is expected ± tolerance, after
+// requiring the estimate's standard error to be at most tolerance / 4: a true answer then fails
+// with probability below 1e-4, and a noisy render cannot pass by luck.
+void check_mean(const TestRender& img, int x0, int y0, int x1, int y1, double expected, double tolerance);
+
+TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, int height, int spp,
+                      int max_depth = 64, uint64_t seed = 1, int threads = 0);
+
+// A fresh empty folder for a test's files.
+std::filesystem::path temp_dir(const std::string& name);
+
+// Runs the prism executable with arguments; returns its exit code, stderr in `err`.
+int run_prism(const std::string& arguments, std::string* err = nullptr);
+
+// Whether ../shared (developer assets) is present; tests that use it skip when it is not.
+bool shared_assets_present();
+std::filesystem::path shared_dir();
+
+}  // namespace prism::test
