@@ -1,0 +1,92 @@
+#pragma once
+// Reflection and refraction at a smooth interface, and the Fresnel equations:
+//   dielectric: exact unpolarised reflectance with total internal reflection (R + T = 1);
+//   conductor:  exact reflectance for a complex relative index η = n + ik.
+// Convention (pbrt-v4): η = n_t / n_i is the index of the side opposite the normal over the
+// index of the normal's side, and cos θ_i > 0 when the incident direction is on the normal's
+// side; a negative cos θ_i means the light arrives from the other side and η is inverted.
+
+#include <cmath>
+#include <complex>
+#include <optional>
+
+#include "base/vec.h"
+
+namespace prism {
+
+// Mirror direction of w about the normal n (both unit; w points away from the surface).
+inline Vec3f reflect(const Vec3f& w, const Vec3f& n) { return -w + n * (2 * dot(w, n)); }
+
+struct Refraction {
+  Vec3f wt;     // transmitted direction, unit
+  float eta_p;  // the η that applied: η, or 1/η when w was on the other side of n
+};
+
+// Snell's law in vector form (Hecht, "Optics", §4.3; pbrt-v4 §9.3.2): with cos θ_t from
+// sin²θ_t = sin²θ_i / η², w_t = −w/η + (cos θ_i/η − cos θ_t) n. Returns nothing on total
+// internal reflection (sin²θ_t ≥ 1).
+inline std::optional<Refraction> refract(const Vec3f& w, Vec3f n, float eta) {
+  double cos_i = std::clamp(double(dot(n, w)), -1.0, 1.0), e = eta;
+  if (cos_i < 0) {
+    e = 1 / e;
+    cos_i = -cos_i;
+    n = -n;
+  }
+  if (e == 1) return Refraction{-w, float(e)};  // index-matched: straight through
+  // In double, exactly as fresnel_dielectric_polarized decides total internal reflection, so that
+  // R = 1 − T holds to the last bit near the critical angle.
+  const double sin2_t = (1 - cos_i * cos_i) / (e * e);
+  if (sin2_t >= 1) return std::nullopt;
+  const double cos_t = std::sqrt(1 - sin2_t);
+  const Vec3d wt = -Vec3d(w) / e + Vec3d(n) * (cos_i / e - cos_t);
+  return Refraction{Vec3f(normalize(wt)), float(e)};
+}
+
+// Reflectance of s- (⊥) and p- (∥) polarised light and their average, the unpolarised R.
+struct FresnelReflectance {
+  float R, Rs, Rp;
+};
+
+// Fresnel equations for a dielectric interface (Born & Wolf, "Principles of Optics", §1.5.3):
+//   r⊥ = (cos θ_i − η cos θ_t) / (cos θ_i + η cos θ_t),  r∥ = (η cos θ_i − cos θ_t) / (η cos θ_i + cos θ_t).
+// Computed in double: stable for η from 1e-3 to 1e3 and cos θ_i ∈ [−1, 1]; R = 0 exactly for
+// an index-matched interface and R = 1 under total internal reflection.
+inline FresnelReflectance fresnel_dielectric_polarized(float cos_theta_i, float eta) {
+  double cos_i = std::clamp(double(cos_theta_i), -1.0, 1.0), e = eta;
+  if (cos_i < 0) {
+    e = 1 / e;
+    cos_i = -cos_i;
+  }
+  if (e == 1) return {0, 0, 0};
+  const double sin2_t = (1 - cos_i * cos_i) / (e * e);
+  if (sin2_t >= 1) return {1, 1, 1};
+  const double cos_t = std::sqrt(1 - sin2_t);
+  const double r_s = (cos_i - e * cos_t) / (cos_i + e * cos_t);
+  const double r_p = (e * cos_i - cos_t) / (e * cos_i + cos_t);
+  const double Rs = r_s * r_s, Rp = r_p * r_p;
+  return {float((Rs + Rp) / 2), float(Rs), float(Rp)};
+}
+
+inline float fresnel_dielectric(float cos_theta_i, float eta) { return fresnel_dielectric_polarized(cos_theta_i, eta).R; }
+
+// Fresnel equations with a complex relative index η = n + ik (Born & Wolf §14.2): the same
+// amplitudes as above with complex cos θ_t = sqrt(1 − sin²θ_i / η²). Exact, not the usual
+// approximation in n, k and cos θ. cos θ_i is taken on the incident side (|cos θ_i|).
+inline FresnelReflectance fresnel_conductor_polarized(float cos_theta_i, float n, float k) {
+  using C = std::complex<double>;
+  const double cos_i = std::min(1.0, std::abs(double(cos_theta_i)));
+  if (n == 0 && k == 0) return {1, 1, 1};  // η = 0: the ideal-conductor limit
+  const C eta(n, k);
+  const C cos_t = std::sqrt(1.0 - (1 - cos_i * cos_i) / (eta * eta));
+  // |r|² of (a − b) / (a + b); a vanishing denominator (grazing onto an index-matched k = 0
+  // surface) is the grazing limit, R = 1.
+  const auto reflectance = [](C a, C b) { return std::norm(a + b) == 0 ? 1.0 : std::min(1.0, std::norm((a - b) / (a + b))); };
+  const double Rs = reflectance(cos_i, eta * cos_t), Rp = reflectance(eta * cos_i, cos_t);
+  return {float((Rs + Rp) / 2), float(Rs), float(Rp)};
+}
+
+inline float fresnel_conductor(float cos_theta_i, float n, float k) {
+  return fresnel_conductor_polarized(cos_theta_i, n, k).R;
+}
+
+}  // namespace prism

@@ -1,0 +1,67 @@
+#pragma once
+// Index-of-refraction models n(λ) for dielectrics, λ in nm:
+//   constant           n
+//   Cauchy             n = A + B / λ²                       (λ in µm; Cauchy 1836)
+//   Sellmeier          n² = 1 + A + Σ Bᵢ λ² / (λ² − Cᵢ)     (λ in µm, Cᵢ in µm²; Sellmeier 1871)
+//   Abbe               n = n_d + (n_d − 1)/V_d · (523655/λ² − 1.5168)   (λ in nm; exactly the
+//                      form of KHR_materials_dispersion: a Cauchy law through n_d with the
+//                      glass's Abbe number V_d = (n_d − 1)/(n_F − n_C))
+//   tabulated          measured n(λ), linear between points
+// A model is dispersive when n varies with λ; a path meeting one keeps only its hero wavelength.
+
+#include <variant>
+#include <vector>
+
+#include "spectral/spectrum.h"
+
+namespace prism {
+
+struct ConstantIor {
+  float n;
+  float operator()(float) const { return n; }
+};
+
+struct CauchyIor {
+  float a, b;  // b in µm²
+  float operator()(float lambda_nm) const {
+    const float l = lambda_nm * 1e-3f;
+    return a + b / (l * l);
+  }
+};
+
+struct SellmeierIor {
+  float a = 0;
+  std::vector<float> b, c;  // c in µm²
+  float operator()(float lambda_nm) const {
+    const double l2 = double(lambda_nm) * lambda_nm * 1e-6;
+    double n2 = 1 + a;
+    for (size_t i = 0; i < b.size(); ++i) n2 += b[i] * l2 / (l2 - c[i]);
+    return float(std::sqrt(std::max(n2, 0.0)));
+  }
+};
+
+struct AbbeIor {
+  float nd, vd;  // refractive index at 587.56 nm (He d line), Abbe number
+  float operator()(float lambda_nm) const {
+    return nd + (nd - 1) / vd * (523655.f / (lambda_nm * lambda_nm) - 1.5168f);
+  }
+};
+
+struct TabulatedIor {
+  TabulatedSpectrum n;
+  float operator()(float lambda_nm) const { return n(lambda_nm); }
+};
+
+using IorModel = std::variant<ConstantIor, CauchyIor, SellmeierIor, AbbeIor, TabulatedIor>;
+
+inline float ior(const IorModel& model, float lambda_nm) {
+  return std::visit([lambda_nm](const auto& m) { return m(lambda_nm); }, model);
+}
+
+// Whether n differs anywhere over the visible range.
+bool is_dispersive(const IorModel& model);
+
+// Abbe number V_d = (n_d − 1) / (n_F − n_C) at the Fraunhofer d, F and C lines.
+float abbe_number(const IorModel& model);
+
+}  // namespace prism
