@@ -5,12 +5,14 @@
 #include <optional>
 #include <variant>
 
+#include "materials/conductor_bsdf.h"
+#include "materials/dielectric_bsdf.h"
 #include "materials/diffuse_bsdf.h"
 
 namespace prism {
 
 template <int N>
-using Bsdf = std::variant<DiffuseBsdf<N>>;
+using Bsdf = std::variant<DiffuseBsdf<N>, ConductorBsdf<N>, DielectricBsdf<N>>;
 
 template <int N>
 SampledSpectrum<N> bsdf_f(const Bsdf<N>& b, const Vec3f& wo, const Vec3f& wi) {

@@ -17,6 +17,7 @@ struct BsdfSample {
   float pdf = 0;               // solid-angle density; for a delta lobe, the discrete probability
   bool specular = false;       // delta lobe: pdf is a probability, f includes the delta
   bool transmission = false;
+  float eta = 1;               // relative index crossed by a refraction (1 otherwise)
 };
 
 inline float cos_theta(const Vec3f& w) { return w.z; }

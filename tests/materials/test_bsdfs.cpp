@@ -1,0 +1,117 @@
+// BSDF lobes: energy (R + T = 1 for clear dielectrics), reciprocity, sampling against pdf.
+
+#include <catch2/catch.hpp>
+
+#include "base/rng.h"
+#include "base/warp.h"
+#include "materials/material.h"
+#include "support/chi2.h"
+
+using namespace prism;
+
+TEST_CASE("smooth dielectric: R + T = 1 over angles, indices and wavelengths, with radiance scaling") {
+  for (float eta : {1.0f, 1.0001f, 1.33f, 1.5f, 2.42f, 4.f, 1 / 1.5f})
+    for (float c = -1; c <= 1; c += 0.05f) {
+      if (c == 0) continue;
+      const Vec3f wo(std::sqrt(std::max(0.f, 1 - c * c)), 0, c);
+      const DielectricBsdf<4> bsdf(eta, SampledSpectrum<4>(1.f), false);
+      const float R = bsdf.reflectance(wo);
+      const auto t = bsdf.transmission(wo);
+      const float T = t ? t->weight[0] * sqr(t->eta) : 0.f;  // undo the 1/η² radiance scaling
+      INFO("eta " << eta << " cos " << c);
+      CHECK(R + T == Approx(1).margin(1e-6));
+      // Sampling: reflection with probability R, transmission with 1 − R, weights f·|cos|/pdf.
+      const auto r = bsdf.sample_f(wo, 0.f, {});
+      REQUIRE(r);
+      if (R > 0) CHECK(r->f[0] * abs_cos_theta(r->wi) / r->pdf == Approx(1).epsilon(1e-5));
+      if (const float uc = R + 0.5f * (1 - R); t && uc > R && uc < 1) {
+        const auto s = bsdf.sample_f(wo, uc, {});
+        REQUIRE(s);
+        CHECK(s->transmission);
+        CHECK(s->f[0] * abs_cos_theta(s->wi) / s->pdf * sqr(s->eta) == Approx(1).epsilon(1e-5));
+      }
+    }
+  // Thin wall: the sheet's R' + T' = 1 too, and light goes straight through.
+  const DielectricBsdf<4> thin(1.5f, SampledSpectrum<4>(1.f), true);
+  const Vec3f wo = normalize(Vec3f(0.5f, 0.1f, 0.8f));
+  const auto t = thin.transmission(wo);
+  REQUIRE(t);
+  CHECK(thin.reflectance(wo) + t->weight[0] == Approx(1).margin(1e-6));
+  CHECK(length(t->wi + wo) == Approx(0).margin(1e-6));
+  CHECK(thin.reflectance(wo) > fresnel_dielectric(wo.z, 1.5f));  // two interfaces reflect more
+}
+
+TEST_CASE("refraction is reciprocal: the same share both ways, radiance weights differ by eta squared") {
+  for (float eta : {1.33f, 1.5f, 2.42f}) {
+    const DielectricBsdf<1> bsdf(eta, SampledSpectrum<1>(1.f), false);
+    const Vec3f wo = normalize(Vec3f(0.4f, 0.2f, 0.7f));  // outside (n = 1)
+    const auto t = bsdf.transmission(wo);
+    REQUIRE(t);
+    const auto back = bsdf.transmission(t->wi);  // from inside (n = η) back out
+    REQUIRE(back);
+    CHECK(length(back->wi - wo) == Approx(0).margin(1e-5));  // the optical path reverses
+    // Stokes: T(θ_o) = T(θ_t); Veach 1997 §5.2: radiance gains η² entering, loses it leaving.
+    CHECK(t->weight[0] * sqr(eta) == Approx(back->weight[0] / sqr(eta)).epsilon(1e-5));
+    CHECK(t->eta == Approx(eta));
+    CHECK(back->eta == Approx(1 / eta));
+  }
+}
+
+TEST_CASE("Lambertian BSDF: reciprocal, albedo R, sampling follows its pdf (chi-square)") {
+  const DiffuseBsdf<4> bsdf(SampledSpectrum<4>(0.6f));
+  Rng rng(3, 0);
+  for (int i = 0; i < 100; ++i) {
+    const Vec3f a = sample_uniform_hemisphere({rng.uniform(), rng.uniform()});
+    const Vec3f b = sample_uniform_hemisphere({rng.uniform(), rng.uniform()});
+    CHECK(bsdf.f(a, b)[0] == bsdf.f(b, a)[0]);
+  }
+  for (const Vec3f wo : {Vec3f(0, 0, 1), normalize(Vec3f(1, 0, 0.2f)), normalize(Vec3f(0.3f, 0.3f, -0.5f))}) {
+    const auto result = test::chi2_test(
+        [&](float u1, float u2, float u3) -> std::optional<Vec3f> {
+          const auto s = bsdf.sample_f(wo, u1, {u2, u3});
+          return s ? std::optional<Vec3f>(s->wi) : std::nullopt;
+        },
+        [&](const Vec3f& wi) { return double(bsdf.pdf(wo, wi)); });
+    INFO("wo " << wo.x << "," << wo.y << "," << wo.z << " chi2 " << result.statistic << " dof "
+               << result.degrees_of_freedom << " p " << result.p_value);
+    CHECK(result.passed);
+  }
+  // Albedo by Monte Carlo with the lobe's own sampling: exactly R for every sample.
+  const auto s = bsdf.sample_f(Vec3f(0, 0, 1), 0.5f, {0.3f, 0.7f});
+  REQUIRE(s);
+  CHECK(s->f[0] * abs_cos_theta(s->wi) / s->pdf == Approx(0.6f));
+}
+
+TEST_CASE("the chi-square test rejects a sampler that does not follow its pdf") {
+  // Uniform-hemisphere samples checked against the cosine pdf must fail.
+  const auto result = test::chi2_test(
+      [](float, float u2, float u3) -> std::optional<Vec3f> { return sample_uniform_hemisphere({u2, u3}); },
+      [](const Vec3f& w) { return w.z > 0 ? double(cosine_hemisphere_pdf(w.z)) : 0.0; });
+  CHECK_FALSE(result.passed);
+}
+
+TEST_CASE("smooth conductor reflects the exact Fresnel reflectance per wavelength") {
+  SampledSpectrum<4> n, k;
+  for (int i = 0; i < 4; ++i) n[i] = 0.2f + 0.3f * i, k[i] = 3.f + i;
+  const ConductorBsdf<4> bsdf(n, k);
+  const Vec3f wo = normalize(Vec3f(0.6f, 0, 0.8f));
+  const auto s = bsdf.sample_f(wo, 0.5f, {});
+  REQUIRE(s);
+  CHECK(s->specular);
+  for (int i = 0; i < 4; ++i)
+    CHECK(s->f[i] * abs_cos_theta(s->wi) / s->pdf == Approx(fresnel_conductor(0.8f, n[i], k[i])));
+}
+
+TEST_CASE("a metal made from a colour reflects that colour at normal incidence") {
+  const ConductorMaterial m = conductor_from_reflectance(ConstantSpectrum{0.7f});
+  const float n = evaluate(m.n, 550), k = evaluate(m.k, 550);
+  CHECK(fresnel_conductor(1, n, k) == Approx(0.7).margin(1e-4));
+  // Its directional albedo matches glTF's reference (Schlick) metal of the same colour.
+  double exact = 0, schlick = 0;
+  for (int i = 0; i < 1000; ++i) {
+    const double c = (i + 0.5) / 1000;
+    exact += fresnel_conductor(float(c), n, k) * 2 * c / 1000;
+    schlick += (0.7 + 0.3 * std::pow(1 - c, 5)) * 2 * c / 1000;
+  }
+  CHECK(exact == Approx(schlick).margin(2e-3));
+}

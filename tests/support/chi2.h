@@ -1,0 +1,28 @@
+#pragma once
+// Pearson's χ² goodness-of-fit test of a direction sampler against its claimed pdf, over a
+// grid in (cos θ, φ) on the sphere (the method of Mitsuba's test suite; Jakob 2010).
+
+#include <functional>
+#include <optional>
+
+#include "base/vec.h"
+
+namespace prism::test {
+
+struct Chi2Result {
+  double statistic, p_value;
+  int degrees_of_freedom;
+  bool passed;  // p ≥ significance
+};
+
+// sample(u1, u2, u3) returns a unit direction or nothing (a failed sample); pdf(w) its solid
+// angle density. Expected counts come from integrating pdf over each cell (Simpson).
+Chi2Result chi2_test(const std::function<std::optional<Vec3f>(float, float, float)>& sample,
+                     const std::function<double(const Vec3f&)>& pdf, int samples = 200000, int theta_bins = 20,
+                     int phi_bins = 40, double significance = 1e-3, uint64_t seed = 1);
+
+// Regularised lower incomplete gamma P(a, x) (series for x < a + 1, else continued fraction;
+// Numerical Recipes §6.2), for the χ² distribution's CDF.
+double regularized_gamma_p(double a, double x);
+
+}  // namespace prism::test
