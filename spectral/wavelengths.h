@@ -57,6 +57,14 @@ class SampledWavelengths {
   }
 
   float operator[](int i) const { return lambda_[i]; }
+
+  // Lane i alone, as a one-wavelength path (for tracing wavelengths separately).
+  SampledWavelengths<1> lane(int i) const {
+    SampledWavelengths<1> w;
+    w.lambda_[0] = lambda_[i];
+    w.pdf_[0] = pdf_[i];
+    return w;
+  }
   const SampledSpectrum<N>& pdf() const { return pdf_; }
 
   // At an interface whose index of refraction varies with λ, only the hero wavelength (lane 0)
@@ -75,6 +83,8 @@ class SampledWavelengths {
   }
 
  private:
+  template <int>
+  friend class SampledWavelengths;
   SampledSpectrum<N> lambda_, pdf_;
 };
 

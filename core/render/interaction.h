@@ -19,6 +19,8 @@ struct SurfaceInteraction {
   uint32_t instance, prim;
 
   Ray spawn(const Vec3f& w) const { return spawn_ray(p, p_error, n, w); }
+  // Whether the ray arrived on the front side (it enters a closed surface there).
+  bool front_face() const { return dot(wo, n) > 0; }
 };
 
 }  // namespace prism

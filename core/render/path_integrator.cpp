@@ -1,19 +1,13 @@
 #include "render/path_integrator.h"
 
-#include "base/frame.h"
-#include "materials/bsdf.h"
+#include "render/direct_light.h"
+#include "render/medium_stack.h"
 
 namespace prism {
 
 namespace {
 
-// Reflection that would cross to the other side of the geometric surface is refused: with
-// shading normals it would leak light through (Veach 1997, §5.3).
-bool crosses_surface(const SurfaceInteraction& si, const Vec3f& wi) {
-  return dot(wi, si.n) * dot(si.wo, si.n) <= 0;
-}
-
-// Next-event estimation: one light sample, weighted against BSDF sampling by MIS.
+// Next-event estimation: one light chosen by power, weighted against BSDF sampling by MIS.
 template <int N>
 SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& si, const Frame& frame,
                                  const Bsdf<N>& bsdf, const Vec3f& wo, const SampledWavelengths<N>& lambda,
@@ -23,19 +17,13 @@ SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& s
   const PowerLightSampler& ls = world.light_sampler();
   if (ls.empty()) return SampledSpectrum<N>(0.f);
   const uint32_t index = ls.sample(u_light);
-  const Light& light = world.lights()[index];
-  const auto sample = sample_li(light, LightSampleContext{si.p, si.p_error, si.n}, u, lambda);
   const float pmf = ls.pmf(index);
-  if (!sample || sample->L.is_zero() || pmf == 0.f || crosses_surface(si, sample->wi))
-    return SampledSpectrum<N>(0.f);
-  const Vec3f wi = frame.to_local(sample->wi);
-  const SampledSpectrum<N> f = bsdf_f(bsdf, wo, wi) * abs_cos_theta(wi);
-  if (f.is_zero()) return SampledSpectrum<N>(0.f);
-  ++counters.shadow;
-  if (world.occluded(sample->shadow_ray)) return SampledSpectrum<N>(0.f);
-  const float light_pdf = pmf * sample->pdf;
-  const float weight = is_delta(light) ? 1.f : power_heuristic(light_pdf, bsdf_pdf(bsdf, wo, wi));
-  return f * sample->L * (weight / light_pdf);
+  const Light& light = world.lights()[index];
+  const auto c = light_contribution(world, si, frame, bsdf, wo, light, u, lambda, counters);
+  if (!c || pmf == 0.f) return SampledSpectrum<N>(0.f);
+  const float light_pdf = pmf * c->light_pdf;
+  const float weight = is_delta(light) ? 1.f : power_heuristic(light_pdf, c->bsdf_pdf);
+  return c->f_L * (weight / light_pdf);
 }
 
 }  // namespace
@@ -46,11 +34,14 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
   SampledSpectrum<N> L(0.f), beta(1.f);
   bool specular_bounce = false;
   float bsdf_pdf_prev = 0.f;  // solid-angle pdf of the BSDF sample that made `ray`
+  float eta_scale = 1.f;      // Π η² of the refractions so far: undoes radiance scaling for roulette
+  MediumStack media;
   const PowerLightSampler& light_sampler = world.light_sampler();
 
   for (int depth = 0;; ++depth) {
     ++(depth == 0 ? counters.primary : counters.secondary);
     const auto si = world.intersect(ray);
+    beta *= media.transmittance(si ? si->t : kInfinity, lambda);
 
     // Light reached without sampling it: full weight after a camera or specular vertex,
     // otherwise the MIS weight of BSDF sampling against light sampling.
@@ -77,7 +68,8 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     }
     if (depth == options.max_depth) break;
 
-    const Bsdf<N> bsdf = make_bsdf(material, lambda);
+    const bool entering = si->front_face();
+    const Bsdf<N> bsdf = make_bsdf(material, lambda, media.front_dielectric(material, entering));
     const Frame frame = Frame::from_z(si->ns);
     const Vec3f wo = frame.to_local(si->wo);
     if (!bsdf_is_specular(bsdf)) L += beta * sample_direct(world, *si, frame, bsdf, wo, lambda, sampler, counters);
@@ -91,10 +83,14 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     specular_bounce = bs->specular;
     bsdf_pdf_prev = bs->pdf;
     ray = si->spawn(wi);
+    if (bs->transmission) {
+      eta_scale *= sqr(bs->eta);
+      media.cross(material, entering);
+    }
 
     // Russian roulette: continue with probability min(1, max throughput) after the first bounce.
-    const float q = std::max(0.f, 1.f - beta.max());
-    if (depth >= 1 && q > 0.f) {
+    const float q = std::max(0.f, 1.f - beta.max() * eta_scale);
+    if (options.russian_roulette && depth >= 1 && q > 0.f) {
       if (sampler.get_1d() < q) break;
       beta /= 1.f - q;
     }

@@ -10,7 +10,8 @@
 namespace prism {
 
 struct PathOptions {
-  int max_depth = 16;  // bounces; 0 shows only what the camera sees emitting
+  int max_depth = 16;            // bounces; 0 shows only what the camera sees emitting
+  bool russian_roulette = true;  // off: every path runs to max_depth (for exact checks)
 };
 
 // Radiance arriving along `ray` at the path's wavelengths.

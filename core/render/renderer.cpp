@@ -8,6 +8,7 @@
 #include "base/parallel.h"
 #include "base/progress.h"
 #include "render/film.h"
+#include "render/whitted_integrator.h"
 #include "spectral/cie.h"
 
 namespace prism {
@@ -33,7 +34,10 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
         const Vec2f jitter = sampler.get_2d();
         SampledWavelengths<N> lambda = SampledWavelengths<N>::sample(sampler.get_1d());
         const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
-        const SampledSpectrum<N> L = path_radiance(world, ray, lambda, sampler, options.path, stats.rays);
+        const SampledSpectrum<N> L =
+            options.integrator == IntegratorKind::path
+                ? path_radiance(world, ray, lambda, sampler, options.path, stats.rays)
+                : whitted_radiance(world, ray, lambda, sampler, options.path, stats.rays);
         const Xyz xyz = to_xyz(L, lambda);
         ++stats.samples;
         if (std::isfinite(xyz.x) && std::isfinite(xyz.y) && std::isfinite(xyz.z)) {

@@ -12,7 +12,10 @@
 
 namespace prism {
 
+enum class IntegratorKind { path, whitted };
+
 struct RenderOptions {
+  IntegratorKind integrator = IntegratorKind::path;
   int spp = 16;
   uint64_t seed = 0;
   int threads = 0;                  // 0: all hardware threads

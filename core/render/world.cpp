@@ -59,6 +59,12 @@ void World::add_lights() {
     powers.push_back(4 * kPi * kPi * r * r * spectrum_to_xyz(*scene_.environment).y);
   }
   light_sampler_ = PowerLightSampler(powers);
+  std::vector<float> area_powers;
+  for (uint32_t i = 0; i < lights_.size(); ++i) {
+    (is_delta(lights_[i]) ? delta_lights_ : area_lights_).push_back(i);
+    if (!is_delta(lights_[i])) area_powers.push_back(powers[i]);
+  }
+  area_light_sampler_ = PowerLightSampler(area_powers);
 }
 
 std::optional<SurfaceInteraction> World::intersect(const Ray& ray) const {

@@ -27,6 +27,10 @@ class World {
   const Accel& accel() const { return accel_; }
   const std::vector<Light>& lights() const { return lights_; }
   const PowerLightSampler& light_sampler() const { return light_sampler_; }
+  // Point lights, and a power sampler over the other lights (for Whitted-style direct light).
+  const std::vector<uint32_t>& delta_lights() const { return delta_lights_; }
+  const std::vector<uint32_t>& area_lights() const { return area_lights_; }
+  const PowerLightSampler& area_light_sampler() const { return area_light_sampler_; }
 
   // The area light of an emissive triangle, or -1.
   int area_light(uint32_t instance, uint32_t prim) const {
@@ -57,6 +61,8 @@ class World {
   std::vector<int> instance_light_base_;
   int environment_light_ = -1;
   PowerLightSampler light_sampler_;
+  std::vector<uint32_t> delta_lights_, area_lights_;
+  PowerLightSampler area_light_sampler_;
 };
 
 }  // namespace prism

@@ -8,6 +8,7 @@
 
 #include "base/error.h"
 #include "base/log.h"
+#include "materials/catalogue.h"
 #include "scene/gltf_accessor.h"
 
 namespace prism {
@@ -16,9 +17,25 @@ namespace {
 
 // Extensions whose meaning Prism implements. A file that requires any other is refused.
 const std::set<std::string> kSupportedExtensions = {
-    "KHR_materials_emissive_strength",
-    "KHR_lights_punctual",
+    "KHR_materials_emissive_strength", "KHR_lights_punctual",   "KHR_materials_transmission",
+    "KHR_materials_ior",               "KHR_materials_volume", "KHR_materials_dispersion",
 };
+
+// A number from a material extension's object, or the extension's default.
+double extension_number(const tinygltf::Material& m, const char* extension, const char* field, double fallback) {
+  const auto it = m.extensions.find(extension);
+  if (it == m.extensions.end() || !it->second.Has(field)) return fallback;
+  const auto& v = it->second.Get(field);
+  return v.IsNumber() ? v.GetNumberAsDouble() : std::nan("");
+}
+
+// A string under the material's extras: {"prism": {"metal": "Cu"}} names a catalogue material.
+std::string prism_extra(const tinygltf::Material& m, const char* field) {
+  if (!m.extras.IsObject() || !m.extras.Has("prism")) return {};
+  const auto& prism = m.extras.Get("prism");
+  if (!prism.IsObject() || !prism.Has(field) || !prism.Get(field).IsString()) return {};
+  return prism.Get(field).Get<std::string>();
+}
 
 // Images are not decoded at load time: Prism reads only what a scene's materials use.
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
@@ -68,10 +85,10 @@ class GltfLoader {
     out.double_sided = m.doubleSided;
     const auto& bc = m.pbrMetallicRoughness.baseColorFactor;
     if (bc.size() != 4 || !all_finite(bc)) fail("{}: {}: baseColorFactor must be 4 finite numbers", file_, context);
-    out.kind = DiffuseMaterial{RgbAlbedoSpectrum(Rgb{float(bc[0]), float(bc[1]), float(bc[2])})};
+    const Rgb base{float(bc[0]), float(bc[1]), float(bc[2])};
     if (m.pbrMetallicRoughness.baseColorTexture.index >= 0)
       warn_once("textures are not supported yet; using the material factors only");
-
+    out.kind = surface_kind(m, base, context);
     const auto& ef = m.emissiveFactor;
     if (ef.size() != 3 || !all_finite(ef)) fail("{}: {}: emissiveFactor must be 3 finite numbers", file_, context);
     double strength = 1;
@@ -84,6 +101,56 @@ class GltfLoader {
     const Rgb emission{float(ef[0] * strength), float(ef[1] * strength), float(ef[2] * strength)};
     if (emission.max() > 0) out.emission = RgbIlluminantSpectrum(emission);
     return out;
+  }
+
+  // The surface model: a catalogue metal or glass named in extras, glTF transmission as a
+  // dielectric, metallic as a conductor coloured by baseColor, otherwise Lambertian. Rough and
+  // partly metallic or transmissive glTF materials are rounded to the nearest smooth model.
+  MaterialKind surface_kind(const tinygltf::Material& m, Rgb base, const std::string& context) {
+    const auto number = [&](const char* ext, const char* field, double fallback, double lo, double hi) {
+      const double v = extension_number(m, ext, field, fallback);
+      if (!(v >= lo && v <= hi)) fail("{}: {}: {}.{} must be a number in [{}, {}]", file_, context, ext, field, lo, hi);
+      return v;
+    };
+    const double metallic = m.pbrMetallicRoughness.metallicFactor;
+    const double roughness = m.pbrMetallicRoughness.roughnessFactor;
+    const double transmission = number("KHR_materials_transmission", "transmissionFactor", 0, 0, 1);
+    const std::string metal = prism_extra(m, "metal"), glass = prism_extra(m, "glass");
+    if ((metallic > 0 && metallic < 1) || (transmission > 0 && transmission < 1))
+      warn_once("partly metallic or transmissive materials are rounded to the nearer of the two for now");
+    const bool is_metal = !metal.empty() || (glass.empty() && transmission < 0.5 && metallic >= 0.5);
+    const bool is_glass = !glass.empty() || (!is_metal && transmission >= 0.5);
+    if ((is_metal || is_glass) && roughness > 0)
+      warn_once("rough metals and glass are rendered smooth for now (roughness ignored)");
+
+    if (is_metal)
+      return metal.empty() ? conductor_from_reflectance(RgbAlbedoSpectrum(base))
+                           : MaterialCatalogue::standard().metal(metal);
+    if (!is_glass) return DiffuseMaterial{RgbAlbedoSpectrum(base)};
+
+    IorModel ior_model = ConstantIor{float(number("KHR_materials_ior", "ior", 1.5, 1, 1e3))};
+    if (!glass.empty()) {
+      ior_model = MaterialCatalogue::standard().dielectric(glass);
+    } else if (const double dispersion = number("KHR_materials_dispersion", "dispersion", 0, 0, 1e6); dispersion > 0) {
+      // KHR_materials_dispersion: dispersion = 20 / V_d.
+      ior_model = AbbeIor{std::get<ConstantIor>(ior_model).n, float(20 / dispersion)};
+    }
+    // KHR_materials_volume: thickness 0 is a thin wall; otherwise a closed volume absorbing with
+    // σ_a = −ln(attenuationColor) / attenuationDistance per channel (world units).
+    const double thickness = number("KHR_materials_volume", "thicknessFactor", 0, 0, 1e30);
+    const double distance = number("KHR_materials_volume", "attenuationDistance", kInfinity, 0, kInfinity);
+    std::optional<Spectrum> absorption;
+    if (thickness > 0 && std::isfinite(distance)) {
+      Rgb sigma;
+      const auto color = m.extensions.at("KHR_materials_volume").Get("attenuationColor");
+      for (int c = 0; c < 3; ++c) {
+        const double a = color.IsArray() && color.ArrayLen() == 3 ? color.Get(c).GetNumberAsDouble() : 1.0;
+        if (!(a >= 0 && a <= 1)) fail("{}: {}: attenuationColor must hold 3 numbers in [0, 1]", file_, context);
+        sigma[c] = float(-std::log(std::max(a, 1e-30)) / std::max(distance, 1e-30));
+      }
+      if (sigma.max() > 0) absorption = RgbUnboundedSpectrum(sigma);
+    }
+    return DielectricMaterial(std::move(ior_model), RgbAlbedoSpectrum(base), std::move(absorption), thickness == 0);
   }
 
   uint32_t material_index(int gltf_material, const std::string& context) {

@@ -4,8 +4,15 @@ namespace prism {
 
 SceneFeatures analyze_features(const Scene& scene) {
   SceneFeatures f;
-  for (const Instance& inst : scene.instances)
-    if (scene.materials[scene.meshes[inst.mesh].material].emission) f.emissive_triangles = true;
+  for (const Instance& inst : scene.instances) {
+    const Material& m = scene.materials[scene.meshes[inst.mesh].material];
+    f.emissive_triangles |= m.emission.has_value();
+    if (const auto* d = m.dielectric()) {
+      f.dispersion |= d->dispersive;
+      f.absorption |= d->absorption.has_value() && !d->thin_walled;
+    }
+    if (const auto* c = std::get_if<ConductorMaterial>(&m.kind)) f.measured_metals |= !c->catalogue.empty();
+  }
   f.point_lights = !scene.point_lights.empty();
   f.environment = scene.environment.has_value();
   return f;
@@ -21,6 +28,9 @@ std::string SceneFeatures::to_string() const {
   add(emissive_triangles, "emissive_triangles");
   add(point_lights, "point_lights");
   add(environment, "environment");
+  add(dispersion, "dispersion");
+  add(absorption, "absorption");
+  add(measured_metals, "measured_metals");
   return s.empty() ? "none" : s;
 }
 

@@ -12,6 +12,9 @@ struct SceneFeatures {
   bool emissive_triangles = false;
   bool point_lights = false;
   bool environment = false;
+  bool dispersion = false;       // a dielectric whose index varies with wavelength
+  bool absorption = false;       // a closed dielectric volume with Beer–Lambert absorption
+  bool measured_metals = false;  // a metal with catalogue n, k tables
 
   std::string to_string() const;  // e.g. "emissive_triangles point_lights"
 };

@@ -180,3 +180,54 @@ TEST_CASE("every shared glTF asset loads", "[shared]") {
   }
   log::set_level(log::Level::info);
 }
+
+TEST_CASE("glTF materials map to Prism's optics: transmission, ior, dispersion, volume, metals, extras") {
+  const auto dir = test::temp_dir("gltf_materials");
+  TriangleGltf base;
+  const auto with_material = [&](const std::string& material_json) {
+    std::string json = base.json();
+    const auto start = json.find("\"materials\": [");
+    const auto end = json.find("],\n  \"buffers\"");
+    json.replace(start, end - start + 1, "\"materials\": [" + material_json + "]");
+    return load_gltf(write(dir, "m.gltf", json));
+  };
+  // Transmission with IOR, dispersion and an absorbing volume: a closed dispersive dielectric.
+  Scene s = with_material(R"({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
+      "KHR_materials_ior": {"ior": 1.6}, "KHR_materials_dispersion": {"dispersion": 0.5},
+      "KHR_materials_volume": {"thicknessFactor": 1, "attenuationDistance": 2, "attenuationColor": [0.5, 0.5, 0.5]}}})");
+  const auto* d = s.materials[0].dielectric();
+  REQUIRE(d);
+  CHECK_FALSE(d->thin_walled);
+  CHECK(d->dispersive);
+  CHECK(ior(d->ior, 587.56f) == Approx(1.6).margin(1e-4));
+  CHECK(abbe_number(d->ior) == Approx(40).epsilon(5e-3));  // V_d = 20 / dispersion
+  REQUIRE(d->absorption);
+  CHECK(evaluate(*d->absorption, 550) == Approx(std::log(2.0) / 2).epsilon(1e-3));  // −ln(0.5) / 2
+  const SceneFeatures f = analyze_features(s);
+  CHECK(f.dispersion);
+  CHECK(f.absorption);
+
+  // Transmission without a volume is a thin wall; without dispersion the index is constant.
+  s = with_material(R"({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}}})");
+  REQUIRE(s.materials[0].dielectric());
+  CHECK(s.materials[0].dielectric()->thin_walled);
+  CHECK_FALSE(s.materials[0].dielectric()->dispersive);
+  CHECK(ior(s.materials[0].dielectric()->ior, 400) == Approx(1.5));
+
+  // metallic = 1: a conductor coloured by baseColor; extras name a measured metal or glass.
+  s = with_material(R"({"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.6, 0.5, 1], "metallicFactor": 1}})");
+  REQUIRE(std::holds_alternative<ConductorMaterial>(s.materials[0].kind));
+  CHECK(std::get<ConductorMaterial>(s.materials[0].kind).catalogue.empty());
+  s = with_material(R"({"extras": {"prism": {"metal": "Au"}}})");
+  REQUIRE(std::holds_alternative<ConductorMaterial>(s.materials[0].kind));
+  CHECK(std::get<ConductorMaterial>(s.materials[0].kind).catalogue == "Au");
+  CHECK(analyze_features(s).measured_metals);
+  s = with_material(R"({"extras": {"prism": {"glass": "N-BK7"}}})");
+  REQUIRE(s.materials[0].dielectric());
+  CHECK(ior(s.materials[0].dielectric()->ior, 587.56f) == Approx(1.5168).margin(1e-4));
+
+  // Errors name the problem.
+  CHECK_THROWS_WITH(with_material(R"({"extras": {"prism": {"metal": "Mithril"}}})"), Catch::Contains("Mithril"));
+  CHECK_THROWS_WITH(with_material(R"({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
+      "KHR_materials_ior": {"ior": 0.5}}})"), Catch::Contains("ior"));
+}

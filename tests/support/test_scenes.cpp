@@ -104,6 +104,18 @@ double TestRender::standard_error(int channel, int x0, int y0, int x1, int y1) c
   return std::sqrt(sum_sq / (n - 1) / n);
 }
 
+MeanDifference mean_difference(const TestRender& a, const TestRender& b, int channel) {
+  const size_t n = a.rgb.size() / 3;
+  double sum = 0, sum_sq = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const double d = double(a.rgb[i * 3 + channel]) - b.rgb[i * 3 + channel];
+    sum += d;
+    sum_sq += d * d;
+  }
+  const double mean = sum / double(n);
+  return {mean, std::sqrt(std::max(0.0, sum_sq / double(n) - mean * mean) / double(n - 1))};
+}
+
 void check_mean(const TestRender& img, int x0, int y0, int x1, int y1, double expected, double tolerance) {
   for (int c = 0; c < 3; ++c) {
     INFO("channel " << c << " over [" << x0 << "," << x1 << ") x [" << y0 << "," << y1 << ")");
@@ -113,9 +125,10 @@ void check_mean(const TestRender& img, int x0, int y0, int x1, int y1, double ex
 }
 
 TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, int height, int spp, int max_depth,
-                      uint64_t seed, int threads) {
+                      uint64_t seed, int threads, IntegratorKind integrator) {
   const World world(scene);
   RenderOptions options;
+  options.integrator = integrator;
   options.spp = spp;
   options.seed = seed;
   options.threads = threads;
@@ -134,17 +147,20 @@ std::filesystem::path temp_dir(const std::string& name) {
   return dir;
 }
 
-int run_prism(const std::string& arguments, std::string* err) {
-  const auto err_file = temp_dir("run") / "stderr.txt";
-  const std::string command = std::string("\"") + PRISM_EXECUTABLE + "\" " + arguments + " >/dev/null 2>\"" +
-                              err_file.string() + "\"";
+int run_prism(const std::string& arguments, std::string* err, std::string* out) {
+  const auto dir = temp_dir("run");
+  const auto out_file = dir / "stdout.txt", err_file = dir / "stderr.txt";
+  const std::string command = std::string("\"") + PRISM_EXECUTABLE + "\" " + arguments + " >\"" + out_file.string() +
+                              "\" 2>\"" + err_file.string() + "\"";
   const int status = std::system(command.c_str());
-  if (err) {
-    std::ifstream in(err_file);
+  const auto slurp = [](const std::filesystem::path& file) {
+    std::ifstream in(file);
     std::stringstream ss;
     ss << in.rdbuf();
-    *err = ss.str();
-  }
+    return ss.str();
+  };
+  if (err) *err = slurp(err_file);
+  if (out) *out = slurp(out_file);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 

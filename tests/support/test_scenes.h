@@ -41,14 +41,24 @@ struct TestRender {
 // with probability below 1e-4, and a noisy render cannot pass by luck.
 void check_mean(const TestRender& img, int x0, int y0, int x1, int y1, double expected, double tolerance);
 
+// Mean of one channel's per-pixel difference a − b over the whole image, with its standard
+// error from the spread of the differences: the images' shared structure cancels, so this
+// measures the noise of two independent renders of the same scene.
+struct MeanDifference {
+  double difference, standard_error;
+};
+MeanDifference mean_difference(const TestRender& a, const TestRender& b, int channel);
+
 TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, int height, int spp,
-                      int max_depth = 64, uint64_t seed = 1, int threads = 0);
+                      int max_depth = 64, uint64_t seed = 1, int threads = 0,
+                      IntegratorKind integrator = IntegratorKind::path);
 
 // A fresh empty folder for a test's files.
 std::filesystem::path temp_dir(const std::string& name);
 
-// Runs the prism executable with arguments; returns its exit code, stderr in `err`.
-int run_prism(const std::string& arguments, std::string* err = nullptr);
+// Runs the prism executable with arguments; returns its exit code, stderr in `err` and stdout
+// in `out` when given.
+int run_prism(const std::string& arguments, std::string* err = nullptr, std::string* out = nullptr);
 
 // Whether ../shared (developer assets) is present; tests that use it skip when it is not.
 bool shared_assets_present();

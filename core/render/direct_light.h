@@ -1,0 +1,42 @@
+#pragma once
+// Light arriving at a surface point from one sample of one light, shadow ray included; the
+// integrators weight it (MIS in the path tracer, plainly in the Whitted tracer).
+
+#include <optional>
+
+#include "base/frame.h"
+#include "materials/bsdf.h"
+#include "render/ray_counters.h"
+#include "render/world.h"
+
+namespace prism {
+
+template <int N>
+struct LightContribution {
+  SampledSpectrum<N> f_L;  // f(wo, wi) · L_i · |cos θ_i|, not yet divided by the pdf
+  float light_pdf;         // solid-angle pdf of the light sample (1 for a point light)
+  float bsdf_pdf;          // the BSDF's pdf of sampling the same direction
+};
+
+// Reflection that would cross to the other side of the geometric surface is refused: with
+// shading normals it would leak light through the surface (Veach 1997, §5.3).
+inline bool crosses_surface(const SurfaceInteraction& si, const Vec3f& wi) {
+  return dot(wi, si.n) * dot(si.wo, si.n) <= 0;
+}
+
+template <int N>
+std::optional<LightContribution<N>> light_contribution(const World& world, const SurfaceInteraction& si,
+                                                       const Frame& frame, const Bsdf<N>& bsdf, const Vec3f& wo,
+                                                       const Light& light, Vec2f u,
+                                                       const SampledWavelengths<N>& lambda, RayCounters& counters) {
+  const auto sample = sample_li(light, LightSampleContext{si.p, si.p_error, si.n}, u, lambda);
+  if (!sample || sample->L.is_zero() || crosses_surface(si, sample->wi)) return std::nullopt;
+  const Vec3f wi = frame.to_local(sample->wi);
+  const SampledSpectrum<N> f = bsdf_f(bsdf, wo, wi) * abs_cos_theta(wi);
+  if (f.is_zero()) return std::nullopt;
+  ++counters.shadow;
+  if (world.occluded(sample->shadow_ray)) return std::nullopt;
+  return LightContribution<N>{f * sample->L, sample->pdf, bsdf_pdf(bsdf, wo, wi)};
+}
+
+}  // namespace prism
