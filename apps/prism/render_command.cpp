@@ -98,7 +98,7 @@ void run(const RenderArgs& args) {
   image.metadata = {
       {"software", std::string("Prism " PRISM_VERSION)},
       {"prism.scene", args.scene},
-      {"prism.integrator", std::string("path")},
+      {"prism.integrator", std::string(args.options.integrator == IntegratorKind::path ? "path" : "whitted")},
       {"prism.spp", args.options.spp},
       {"prism.seconds", result.stats.seconds},
       {"prism.seed", std::to_string(args.options.seed)},
@@ -138,6 +138,11 @@ void add_render_command(CLI::App& app) {
       ->default_val(0)->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-depth", args->options.path.max_depth, "Maximum path length in bounces")
       ->default_val(16)->check(CLI::NonNegativeNumber);
+  cmd->add_option("--integrator", args->options.integrator,
+                  "path: unidirectional path tracing (NEE + MIS); whitted: recursive Fresnel splitting")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, IntegratorKind>{{"path", IntegratorKind::path}, {"whitted", IntegratorKind::whitted}}))
+      ->default_str("path");
   cmd->add_option("--wavelengths", args->options.wavelengths, "Wavelengths carried per path (1, 4 or 8)")
       ->default_val(kDefaultWavelengths)->check(CLI::IsMember({1, 4, 8}));
   cmd->add_option("--env", args->env, "Constant environment radiance as linear Rec.709 R,G,B (e.g. 1,1,1)");

@@ -3,8 +3,9 @@
 
 Builds a Cornell box as a single self-contained glTF 2.0 file (binary buffer
 embedded as a base64 data URI): floor, ceiling, back wall, red left wall,
-green right wall, the short and tall white blocks, a rectangular ceiling
-light and the reference perspective camera.
+green right wall, the short white block with a gold sphere on it, a copper
+sphere, a dispersive flint-glass prism where the tall block stood, a
+rectangular ceiling light and the reference perspective camera.
 
 Run from the repository root:
     python3 data/scenes/make_cornell.py            # writes cornell.gltf
@@ -147,18 +148,25 @@ def emitter(name, rgb, strength, base_rgb):
     m["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": strength}}
     return m
 
-def metal(name, rgb, roughness):
-    return {"name": name, "pbrMetallicRoughness": {
+def metal(name, rgb, roughness, catalogue=None):
+    """Metal coloured rgb for any glTF viewer; `catalogue` names Prism's measured n, k table."""
+    m = {"name": name, "pbrMetallicRoughness": {
         "baseColorFactor": list(rgb) + [1.0], "metallicFactor": 1.0, "roughnessFactor": roughness}}
+    if catalogue:
+        m["extras"] = {"prism": {"metal": catalogue}}
+    return m
 
-def glass(name, ior, abbe, thickness):
-    """Clear dielectric; KHR_materials_dispersion uses dispersion = 20 / Abbe."""
+def glass(name, ior, abbe, thickness, catalogue=None):
+    """Clear dielectric; KHR_materials_dispersion uses dispersion = 20 / Abbe. `catalogue`
+    names Prism's measured dispersion formula for the same glass."""
     m = diffuse(name, (1.0, 1.0, 1.0))
     m["pbrMetallicRoughness"]["roughnessFactor"] = 0.0
     m["extensions"] = {"KHR_materials_transmission": {"transmissionFactor": 1.0},
                        "KHR_materials_ior": {"ior": ior},
                        "KHR_materials_volume": {"thicknessFactor": thickness},
                        "KHR_materials_dispersion": {"dispersion": 20.0 / abbe}}
+    if catalogue:
+        m["extras"] = {"prism": {"glass": catalogue}}
     return m
 
 # Linear Rec.709 approximations of the measured Cornell reflectances.
@@ -166,6 +174,10 @@ WHITE = diffuse("white", (0.73, 0.73, 0.73))
 RED = diffuse("red", (0.63, 0.065, 0.05))
 GREEN = diffuse("green", (0.14, 0.45, 0.091))
 LIGHT = emitter("light", (1.0, 0.78, 0.55), 20.0, (0.78, 0.78, 0.78))
+# Measured optics in Prism (extras), close glTF equivalents for other viewers.
+COPPER = metal("copper", (0.955, 0.638, 0.538), 0.0, "Cu")
+GOLD = metal("gold", (1.0, 0.782, 0.344), 0.0, "Au")
+FLINT = glass("flint_glass", 1.78472, 25.68, 1.0, "N-SF11")  # SCHOTT N-SF11: strong dispersion
 
 # ---------------------------------------------------------------- scene
 SHORT_BLOCK = [
@@ -174,12 +186,6 @@ SHORT_BLOCK = [
     [(130.0, 0.0, 65.0), (130.0, 165.0, 65.0), (290.0, 165.0, 114.0), (290.0, 0.0, 114.0)],
     [(82.0, 0.0, 225.0), (82.0, 165.0, 225.0), (130.0, 165.0, 65.0), (130.0, 0.0, 65.0)],
     [(240.0, 0.0, 272.0), (240.0, 165.0, 272.0), (82.0, 165.0, 225.0), (82.0, 0.0, 225.0)]]
-TALL_BLOCK = [
-    [(423.0, 330.0, 247.0), (265.0, 330.0, 296.0), (314.0, 330.0, 456.0), (472.0, 330.0, 406.0)],
-    [(423.0, 0.0, 247.0), (423.0, 330.0, 247.0), (472.0, 330.0, 406.0), (472.0, 0.0, 406.0)],
-    [(472.0, 0.0, 406.0), (472.0, 330.0, 406.0), (314.0, 330.0, 456.0), (314.0, 0.0, 456.0)],
-    [(314.0, 0.0, 456.0), (314.0, 330.0, 456.0), (265.0, 330.0, 296.0), (265.0, 0.0, 296.0)],
-    [(265.0, 0.0, 296.0), (265.0, 330.0, 296.0), (423.0, 330.0, 247.0), (423.0, 0.0, 247.0)]]
 LIGHT_Y = 548.8 - 0.1  # 0.1 mm below the ceiling
 
 # (name, mesh, material). Published quads are already CCW seen from the room.
@@ -190,7 +196,9 @@ OBJECTS = [
     ("left_wall", quad(*mm((552.8, 0, 0), (549.6, 0, 559.2), (556, 548.8, 559.2), (556, 548.8, 0))), RED),
     ("right_wall", quad(*mm((0, 0, 559.2), (0, 0, 0), (0, 548.8, 0), (0, 548.8, 559.2))), GREEN),
     ("short_block", box([mm(*f) for f in SHORT_BLOCK]), WHITE),
-    ("tall_block", box([mm(*f) for f in TALL_BLOCK]), WHITE),
+    ("copper_sphere", uv_sphere(mm((370.0, 110.0, 380.0))[0], 0.110, 64), COPPER),
+    ("gold_sphere", uv_sphere(mm((186.0, 245.0, 168.0))[0], 0.080, 64), GOLD),
+    ("glass_prism", prism(mm((410.0, 0.0, 130.0))[0], 0.150, 0.200, 25.0), FLINT),
     ("light", quad(*mm((343, LIGHT_Y, 227), (343, LIGHT_Y, 332), (213, LIGHT_Y, 332), (213, LIGHT_Y, 227))), LIGHT),
 ]
 
