@@ -1,18 +1,19 @@
 #pragma once
-// Bsdf<N>: the closed set of BSDF lobes, and the calls the integrators make on any of them.
-// Every lobe offers f (value), pdf, sample_f and is_specular, in the local shading frame.
+// Bsdf<N>: the closed set of BSDFs, and the calls the integrators make on any of them. Every
+// lobe offers f (value of its non-delta part), pdf, sample_f, is_specular (all delta) and
+// delta_lobes (its delta directions with their weights, for the Whitted tracer), in the local
+// shading frame.
 
 #include <optional>
 #include <variant>
 
-#include "materials/conductor_bsdf.h"
-#include "materials/dielectric_bsdf.h"
 #include "materials/diffuse_bsdf.h"
+#include "materials/pbr_bsdf.h"
 
 namespace prism {
 
 template <int N>
-using Bsdf = std::variant<DiffuseBsdf<N>, ConductorBsdf<N>, DielectricBsdf<N>>;
+using Bsdf = std::variant<DiffuseBsdf<N>, ConductorBsdf<N>, DielectricBsdf<N>, PbrBsdf<N>>;
 
 template <int N>
 SampledSpectrum<N> bsdf_f(const Bsdf<N>& b, const Vec3f& wo, const Vec3f& wi) {
@@ -32,6 +33,11 @@ std::optional<BsdfSample<N>> bsdf_sample_f(const Bsdf<N>& b, const Vec3f& wo, fl
 template <int N>
 bool bsdf_is_specular(const Bsdf<N>& b) {
   return std::visit([](const auto& lobe) { return lobe.is_specular(); }, b);
+}
+
+template <int N>
+DeltaLobes<N> bsdf_delta_lobes(const Bsdf<N>& b, const Vec3f& wo) {
+  return std::visit([&](const auto& lobe) { return lobe.delta_lobes(wo); }, b);
 }
 
 }  // namespace prism

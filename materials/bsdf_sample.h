@@ -3,6 +3,7 @@
 // directions are unit vectors in the local shading frame, z = shading normal, wo points away
 // from the surface towards the viewer, wi towards the light.
 
+#include <array>
 #include <cmath>
 
 #include "base/vec.h"
@@ -18,6 +19,31 @@ struct BsdfSample {
   bool specular = false;       // delta lobe: pdf is a probability, f includes the delta
   bool transmission = false;
   float eta = 1;               // relative index crossed by a refraction (1 otherwise)
+};
+
+// One delta direction of a BSDF and the share of light it carries (f·|cos θ_i| with the delta
+// integrated out), for tracers that follow every specular branch.
+template <int N>
+struct DeltaLobe {
+  Vec3f wi;
+  SampledSpectrum<N> weight;
+  bool transmission;
+  float eta;  // relative index crossed (1 for reflection)
+};
+
+template <int N>
+struct DeltaLobes {
+  std::array<DeltaLobe<N>, 3> lobes;
+  int count = 0;
+
+  void add(const DeltaLobe<N>& l) {
+    if (!l.weight.is_zero()) lobes[count++] = l;
+  }
+  void add_scaled(const DeltaLobes& other, float s) {
+    for (int i = 0; i < other.count; ++i) add({other.lobes[i].wi, other.lobes[i].weight * s, other.lobes[i].transmission, other.lobes[i].eta});
+  }
+  const DeltaLobe<N>* begin() const { return lobes.data(); }
+  const DeltaLobe<N>* end() const { return lobes.data() + count; }
 };
 
 inline float cos_theta(const Vec3f& w) { return w.z; }

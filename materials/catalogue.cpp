@@ -16,7 +16,7 @@ struct MaterialCatalogue::Impl {
   nlohmann::json index;
   std::map<std::string, CatalogueEntry, std::less<>> entries;
   mutable std::mutex mutex;
-  mutable std::map<std::string, ConductorMaterial, std::less<>> metals;  // tables read so far
+  mutable std::map<std::string, MeasuredMetal, std::less<>> metals;  // tables read so far
 
   const nlohmann::json& record(std::string_view key, bool metal) const {
     const auto it = entries.find(key);
@@ -52,7 +52,7 @@ const MaterialCatalogue& MaterialCatalogue::standard() {
   return catalogue;
 }
 
-ConductorMaterial MaterialCatalogue::metal(std::string_view key) const {
+MeasuredMetal MaterialCatalogue::metal(std::string_view key) const {
   const nlohmann::json& rec = impl_->record(key, true);
   std::lock_guard lock(impl_->mutex);
   if (const auto it = impl_->metals.find(key); it != impl_->metals.end()) return it->second;
@@ -60,7 +60,7 @@ ConductorMaterial MaterialCatalogue::metal(std::string_view key) const {
   const NumericTable table = read_numeric_table(file);
   const auto& l = table.column("wavelength_nm");
   const auto as_float = [](const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); };
-  ConductorMaterial m{TabulatedSpectrum(as_float(l), as_float(table.column("n"))),
+  MeasuredMetal m{TabulatedSpectrum(as_float(l), as_float(table.column("n"))),
                       TabulatedSpectrum(as_float(l), as_float(table.column("k"))), std::string(key)};
   impl_->metals.emplace(std::string(key), m);
   return m;

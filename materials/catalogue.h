@@ -24,7 +24,7 @@ class MaterialCatalogue {
   static const MaterialCatalogue& standard();  // data/materials/catalogue.json
 
   // Throws prism::Error listing the available keys when there is no such material.
-  ConductorMaterial metal(std::string_view key) const;
+  MeasuredMetal metal(std::string_view key) const;
   IorModel dielectric(std::string_view key) const;
 
   const CatalogueEntry& entry(std::string_view key) const;

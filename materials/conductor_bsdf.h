@@ -1,11 +1,15 @@
 #pragma once
-// Smooth conductor: mirror reflection weighted by the exact complex Fresnel reflectance of
-// n(λ) + ik(λ) at each of the path's wavelengths.
+// Conductor: microfacet reflection (Cook & Torrance 1982 with GGX; Walter et al. 2007)
+//   f(wo, wi) = D(m) F(wo·m) G(wo, wi) / (4 |cos θ_o cos θ_i|),  m = normalize(wo + wi),
+// with the exact complex Fresnel reflectance of n(λ) + ik(λ) per lane; a mirror when smooth.
+// Single scattering: light that bounces between microfacets is lost (as in Cycles 3.x).
+// Two-sided: a direction below the surface sees the same lobe, mirrored.
 
 #include <optional>
 
 #include "materials/bsdf_sample.h"
 #include "materials/fresnel.h"
+#include "materials/microfacet.h"
 
 namespace prism {
 
@@ -13,11 +17,10 @@ template <int N>
 class ConductorBsdf {
  public:
   // n, k: the metal's complex index relative to the surrounding medium, per lane.
-  ConductorBsdf(const SampledSpectrum<N>& n, const SampledSpectrum<N>& k) : n_(n), k_(k) {}
+  ConductorBsdf(float alpha, const SampledSpectrum<N>& n, const SampledSpectrum<N>& k)
+      : distribution_(alpha), smooth_(TrowbridgeReitz::effectively_smooth(alpha)), n_(n), k_(k) {}
 
-  SampledSpectrum<N> f(const Vec3f&, const Vec3f&) const { return SampledSpectrum<N>(0.f); }
-  float pdf(const Vec3f&, const Vec3f&) const { return 0.f; }
-  bool is_specular() const { return true; }
+  bool is_specular() const { return smooth_; }
 
   SampledSpectrum<N> reflectance(float cos_theta) const {
     SampledSpectrum<N> r;
@@ -25,13 +28,50 @@ class ConductorBsdf {
     return r;
   }
 
-  std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float, Vec2f) const {
+  DeltaLobes<N> delta_lobes(const Vec3f& wo) const {
+    DeltaLobes<N> d;
+    if (smooth_ && wo.z != 0) d.add({Vec3f(-wo.x, -wo.y, wo.z), reflectance(wo.z), false, 1.f});
+    return d;
+  }
+
+  SampledSpectrum<N> f(Vec3f wo, Vec3f wi) const {
+    if (smooth_ || !same_hemisphere(wo, wi)) return SampledSpectrum<N>(0.f);
+    if (wo.z < 0) wo = -wo, wi = -wi;
+    const Vec3f m = wo + wi;
+    if (wo.z == 0 || wi.z == 0 || length_squared(m) == 0) return SampledSpectrum<N>(0.f);
+    const Vec3f wm = normalize(m);
+    return reflectance(dot(wo, wm)) *
+           (distribution_.D(wm) * distribution_.G(wo, wi) / (4 * wo.z * wi.z));
+  }
+
+  // Visible-normal sampling: pdf(wi) = D_wo(m) / (4 |wo·m|).
+  float pdf(Vec3f wo, Vec3f wi) const {
+    if (smooth_ || !same_hemisphere(wo, wi)) return 0.f;
+    if (wo.z < 0) wo = -wo, wi = -wi;
+    const Vec3f m = wo + wi;
+    if (length_squared(m) == 0) return 0.f;
+    const Vec3f wm = normalize(m);
+    return distribution_.D_visible(wo, wm) / (4 * std::abs(dot(wo, wm)));
+  }
+
+  std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float, Vec2f u) const {
     if (wo.z == 0) return std::nullopt;
-    const Vec3f wi(-wo.x, -wo.y, wo.z);
-    return BsdfSample<N>{reflectance(wo.z) / abs_cos_theta(wi), wi, 1.f, true, false, 1.f};
+    if (smooth_) {
+      const Vec3f wi(-wo.x, -wo.y, wo.z);
+      return BsdfSample<N>{reflectance(wo.z) / abs_cos_theta(wi), wi, 1.f, true, false, 1.f};
+    }
+    const float sign = wo.z < 0 ? -1.f : 1.f;
+    const Vec3f wm = distribution_.sample_visible_normal(wo * sign, u) * sign;
+    const Vec3f wi = reflect(wo, wm);
+    if (!same_hemisphere(wo, wi)) return std::nullopt;
+    const float p = pdf(wo, wi);
+    if (!(p > 0)) return std::nullopt;
+    return BsdfSample<N>{f(wo, wi), wi, p, false, false, 1.f};
   }
 
  private:
+  TrowbridgeReitz distribution_;
+  bool smooth_;
   SampledSpectrum<N> n_, k_;
 };
 

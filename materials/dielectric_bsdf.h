@@ -1,24 +1,29 @@
 #pragma once
-// Smooth dielectric interface: specular reflection with probability R (exact Fresnel, total
-// internal reflection included) and transmission with probability T = 1 − R, so that
-// f·|cos|/pdf is exactly 1 for reflection and tint·T'/T for transmission.
-//   closed surface: Snell refraction; radiance is scaled by 1/η² across the interface
-//                   (Veach 1997, §5.2), so T' = T/η²;
-//   thin wall:      a sheet with no interior: light passes straight through and the two
-//                   interfaces' inter-reflections sum to R' = R + T²R/(1 − R²), T' = 1 − R'
-//                   (pbrt-v4 §9.5.1).
+// Dielectric interface, smooth or rough (Walter et al. 2007, "Microfacet Models for Refraction
+// through Rough Surfaces"; pbrt-v4 §9.7): reflection with the exact Fresnel reflectance F and
+// transmission with 1 − F, at the macro surface when smooth, at GGX microfacets m when rough:
+//   f_r = D(m) G F / (4 |cos θ_o cos θ_i|),                         m ∝ wo + wi
+//   f_t = D(m) G (1 − F) |(wi·m)(wo·m)| / (|cos θ_o cos θ_i| (wi·m + wo·m/η')²) / η'²,  m ∝ η' wi + wo
+// where the last 1/η'² is the radiance scaling across the interface (Veach 1997, §5.2).
+// Thin wall (a sheet with no interior): the two interfaces' inter-reflections sum to
+// R' = R + T²R/(1 − R²), T' = 1 − R' (pbrt-v4 §9.5.1), and light leaves on the far side in the
+// mirror image of the reflection lobe (straight through when smooth).
+// `transmission` ∈ [0, 1] weights the transmitted lobe (glTF's transmissionFactor; the rest
+// of the light goes to a diffuse base elsewhere); `tint` colours transmitted light; `specular`
+// scales the reflectance, s·F, leaving 1 − s·F to pass (KHR_materials_specular's factor).
 
 #include <optional>
 
 #include "materials/bsdf_sample.h"
 #include "materials/fresnel.h"
+#include "materials/microfacet.h"
 
 namespace prism {
 
 template <int N>
 struct Transmission {
   Vec3f wi;
-  SampledSpectrum<N> weight;  // the transmitted share: tint · T, divided by η² when refracted
+  SampledSpectrum<N> weight;  // the transmitted share: transmission · tint · T, divided by η² when refracted
   float eta;                  // relative index crossed (1 for a thin wall)
 };
 
@@ -27,46 +32,134 @@ class DielectricBsdf {
  public:
   // eta = n_back / n_front (the index behind the shading normal over the one in front), one
   // value for all lanes: a λ-dependent index terminates the secondary wavelengths first.
-  // tint multiplies transmitted light (glTF's base colour on transmission; 1 for clear glass).
-  DielectricBsdf(float eta, const SampledSpectrum<N>& tint, bool thin) : eta_(eta), tint_(tint), thin_(thin) {}
+  DielectricBsdf(float alpha, float eta, const SampledSpectrum<N>& tint, bool thin, float transmission = 1.f,
+                 float specular = 1.f)
+      : distribution_(alpha), smooth_(TrowbridgeReitz::effectively_smooth(alpha) || eta == 1), eta_(eta),
+        tint_(tint), thin_(thin), transmission_(transmission), specular_(specular) {}
 
-  SampledSpectrum<N> f(const Vec3f&, const Vec3f&) const { return SampledSpectrum<N>(0.f); }
-  float pdf(const Vec3f&, const Vec3f&) const { return 0.f; }
-  bool is_specular() const { return true; }
+  bool is_specular() const { return smooth_; }
 
-  // Fraction of light reflected towards wo.
-  float reflectance(const Vec3f& wo) const {
-    if (!thin_) return fresnel_dielectric(cos_theta(wo), eta_);
-    const float R = fresnel_dielectric(abs_cos_theta(wo), eta_);
+  // Fresnel reflectance at a (micro)facet with cos θ = cos_theta (signed: < 0 from behind).
+  float fresnel(float cos_theta) const {
+    if (!thin_) return specular_ * fresnel_dielectric(cos_theta, eta_);
+    const float R = specular_ * fresnel_dielectric(std::abs(cos_theta), eta_);
     return R < 1 ? R + sqr(1 - R) * R / (1 - R * R) : R;
   }
 
-  // The transmitted direction and share, or nothing under total internal reflection.
+  // Smooth interface: the reflected share, and the transmitted direction and share.
+  float reflectance(const Vec3f& wo) const { return fresnel(cos_theta(wo)); }
   std::optional<Transmission<N>> transmission(const Vec3f& wo) const {
     const float T = 1 - reflectance(wo);
-    if (T <= 0) return std::nullopt;
-    if (thin_) return Transmission<N>{-wo, tint_ * T, 1.f};
+    if (T <= 0 || transmission_ <= 0) return std::nullopt;
+    if (thin_) return Transmission<N>{-wo, tint_ * (transmission_ * T), 1.f};
     const auto refraction = refract(wo, {0, 0, 1}, eta_);
     if (!refraction) return std::nullopt;
-    return Transmission<N>{refraction->wt, tint_ * (T / sqr(refraction->eta_p)), refraction->eta_p};
+    return Transmission<N>{refraction->wt, tint_ * (transmission_ * T / sqr(refraction->eta_p)), refraction->eta_p};
   }
 
-  std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f) const {
-    const float R = reflectance(wo);
-    if (uc < R) {
-      const Vec3f wi(-wo.x, -wo.y, wo.z);
-      return BsdfSample<N>{SampledSpectrum<N>(R / abs_cos_theta(wi)), wi, R, true, false, 1.f};
+  DeltaLobes<N> delta_lobes(const Vec3f& wo) const {
+    DeltaLobes<N> d;
+    if (!smooth_ || wo.z == 0) return d;
+    d.add({Vec3f(-wo.x, -wo.y, wo.z), SampledSpectrum<N>(reflectance(wo)), false, 1.f});
+    if (const auto t = transmission(wo)) d.add({t->wi, t->weight, true, t->eta});
+    return d;
+  }
+
+  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
+    const auto h = half_vector(wo, wi);
+    if (!h) return SampledSpectrum<N>(0.f);
+    const float F = fresnel(dot(wo, h->wm));
+    const float D = distribution_.D(h->wm);
+    if (h->reflection) return SampledSpectrum<N>(D * distribution_.G(wo, wi) * F / std::abs(4 * wi.z * wo.z));
+    if (thin_) {
+      const Vec3f mirrored(wi.x, wi.y, -wi.z);
+      return tint_ * (transmission_ * D * distribution_.G(wo, mirrored) * (1 - F) / std::abs(4 * wi.z * wo.z));
     }
-    const auto t = transmission(wo);
-    if (!t) return std::nullopt;
-    const float T = 1 - R;
-    return BsdfSample<N>{t->weight / abs_cos_theta(t->wi), t->wi, T, true, true, t->eta};
+    const float denom = sqr(dot(wi, h->wm) + dot(wo, h->wm) / h->eta_p) * wi.z * wo.z;
+    const float ft = D * distribution_.G(wo, wi) * (1 - F) * std::abs(dot(wi, h->wm) * dot(wo, h->wm) / denom);
+    return tint_ * (transmission_ * ft / sqr(h->eta_p));
+  }
+
+  float pdf(const Vec3f& wo, const Vec3f& wi) const {
+    const auto h = half_vector(wo, wi);
+    if (!h) return 0.f;
+    const float R = fresnel(dot(wo, h->wm)), T = transmission_ * (1 - R);
+    if (R + T <= 0) return 0.f;
+    const float Dv = distribution_.D_visible(wo, h->wm);
+    if (h->reflection) return Dv / (4 * std::abs(dot(wo, h->wm))) * R / (R + T);
+    if (thin_) return Dv / (4 * std::abs(dot(wo, h->wm))) * T / (R + T);
+    const float dwm_dwi = std::abs(dot(wi, h->wm)) / sqr(dot(wi, h->wm) + dot(wo, h->wm) / h->eta_p);
+    return Dv * dwm_dwi * T / (R + T);
+  }
+
+  std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
+    if (wo.z == 0) return std::nullopt;
+    if (smooth_) return sample_smooth(wo, uc);
+    const Vec3f wm = distribution_.sample_visible_normal(wo, u);
+    const float R = fresnel(dot(wo, wm)), T = transmission_ * (1 - R);
+    if (R + T <= 0) return std::nullopt;
+    Vec3f wi;
+    bool transmitted = false;
+    float eta_p = 1;
+    if (uc < R / (R + T)) {
+      wi = reflect(wo, wm);
+      if (!same_hemisphere(wo, wi)) return std::nullopt;
+    } else if (thin_) {
+      const Vec3f r = reflect(wo, wm);
+      wi = Vec3f(r.x, r.y, -r.z);
+      transmitted = true;
+      if (same_hemisphere(wo, wi)) return std::nullopt;
+    } else {
+      const auto refraction = refract(wo, wm, eta_);
+      if (!refraction || same_hemisphere(wo, refraction->wt) || refraction->wt.z == 0) return std::nullopt;
+      wi = refraction->wt;
+      eta_p = refraction->eta_p;
+      transmitted = true;
+    }
+    const float p = pdf(wo, wi);
+    if (!(p > 0)) return std::nullopt;
+    return BsdfSample<N>{f(wo, wi), wi, p, false, transmitted, eta_p};
   }
 
  private:
+  struct HalfVector {
+    Vec3f wm;
+    bool reflection;
+    float eta_p;
+  };
+
+  // The microfacet normal that takes wo to wi (facing +z), or nothing for a smooth surface,
+  // grazing directions, or normals that face away from either direction.
+  std::optional<HalfVector> half_vector(const Vec3f& wo, Vec3f wi) const {
+    if (smooth_ || wo.z == 0 || wi.z == 0) return std::nullopt;
+    const bool reflection = same_hemisphere(wo, wi);
+    if (thin_ && !reflection) wi.z = -wi.z;  // the far-side lobe mirrors the reflection lobe
+    const float eta_p = reflection || thin_ ? 1.f : (wo.z > 0 ? eta_ : 1 / eta_);
+    const Vec3f m = wi * eta_p + wo;
+    if (length_squared(m) == 0) return std::nullopt;
+    const Vec3f wm = face_forward(normalize(m), Vec3f(0, 0, 1));
+    if (dot(wm, wi) * wi.z < 0 || dot(wm, wo) * wo.z < 0) return std::nullopt;
+    return HalfVector{wm, reflection, eta_p};
+  }
+
+  std::optional<BsdfSample<N>> sample_smooth(const Vec3f& wo, float uc) const {
+    const float R = reflectance(wo);
+    const auto t = transmission(wo);
+    const float T = t ? transmission_ * (1 - R) : 0.f;
+    if (R + T <= 0) return std::nullopt;
+    if (uc < R / (R + T)) {
+      const Vec3f wi(-wo.x, -wo.y, wo.z);
+      return BsdfSample<N>{SampledSpectrum<N>(R / abs_cos_theta(wi)), wi, R / (R + T), true, false, 1.f};
+    }
+    return BsdfSample<N>{t->weight / abs_cos_theta(t->wi), t->wi, T / (R + T), true, true, t->eta};
+  }
+
+  TrowbridgeReitz distribution_;
+  bool smooth_;
   float eta_;
   SampledSpectrum<N> tint_;
   bool thin_;
+  float transmission_, specular_;
 };
 
 }  // namespace prism

@@ -31,6 +31,7 @@ class DiffuseBsdf {
   }
 
   bool is_specular() const { return false; }
+  DeltaLobes<N> delta_lobes(const Vec3f&) const { return {}; }
 
  private:
   SampledSpectrum<N> r_;

@@ -8,9 +8,8 @@ namespace prism {
 
 namespace {
 
-// Gulbrandsen 2014 ("Artist Friendly Metallic Fresnel", JCGT 3(4)): the n, k whose normal
-// reflectance is r, with edge tint g ∈ [0, 1] blending n between (1 − r)/(1 + r) and
-// (1 + √r)/(1 − √r).
+// Gulbrandsen's n, k with normal reflectance r and edge tint g ∈ [0, 1], which blends n between
+// (1 − r)/(1 + r) and (1 + √r)/(1 − √r).
 std::array<double, 2> gulbrandsen_nk(double r, double g) {
   const double sr = std::sqrt(r);
   const double n = g * (1 - r) / (1 + r) + (1 - g) * (1 + sr) / (1 - sr);
@@ -29,8 +28,8 @@ double albedo_difference(double r, double g) {
   return sum;
 }
 
-// The edge tint at which the exact conductor reflects as much light in total as glTF's
-// reference metal (Schlick's F = r + (1 − r)(1 − cos θ)⁵), by bisection, tabulated in r.
+// The edge tint whose exact conductor reflects as much light in total as Schlick's
+// F = r + (1 − r)(1 − cos θ)⁵, by bisection, tabulated in r.
 double schlick_matched_edge_tint(double r) {
   static const std::array<double, 101> table = [] {
     std::array<double, 101> t{};
@@ -52,15 +51,77 @@ double schlick_matched_edge_tint(double r) {
 
 }  // namespace
 
-ConductorMaterial conductor_from_reflectance(const Spectrum& reflectance) {
-  std::vector<float> n, k;
-  for (int l = int(kLambdaMin); l <= int(kLambdaMax); ++l) {
-    const double r = std::clamp(double(evaluate(reflectance, float(l))), 0.0, 0.999);  // r < 1 keeps k finite
-    const auto nk = gulbrandsen_nk(r, schlick_matched_edge_tint(r));
-    n.push_back(float(nk[0]));
-    k.push_back(float(nk[1]));
+std::array<float, 2> metal_nk_from_reflectance(float reflectance) {
+  const double r = std::clamp(double(reflectance), 0.0, 0.999);  // r < 1 keeps k finite
+  const auto nk = gulbrandsen_nk(r, schlick_matched_edge_tint(r));
+  return {float(nk[0]), float(nk[1])};
+}
+
+SurfaceInputs PbrMaterial::inputs(const SurfacePoint& at) const {
+  SurfaceInputs in{base_color, alpha, metallic, roughness, transmission, dielectric.thin_walled};
+  const auto texel = [&](const std::optional<Texture>& t, bool srgb) { return t->lookup(at.uv[t->texcoord], srgb); };
+  if (base_color_texture) {
+    const auto c = texel(base_color_texture, true);
+    in.base_color = {in.base_color.r * c[0], in.base_color.g * c[1], in.base_color.b * c[2]};
+    in.alpha *= c[3];
   }
-  return {DenselySampledSpectrum(int(kLambdaMin), n), DenselySampledSpectrum(int(kLambdaMin), k), {}};
+  for (int i = 0; i < 3; ++i) in.base_color[i] *= at.vertex_color[i];
+  in.alpha *= at.vertex_color[3];
+  if (metallic_roughness_texture) {
+    const auto t = texel(metallic_roughness_texture, false);
+    in.roughness *= t[1];
+    in.metallic *= t[2];
+  }
+  if (transmission_texture) in.transmission *= texel(transmission_texture, false)[0];
+  if (thickness_texture && texel(thickness_texture, false)[1] == 0) in.thin_walled = true;
+  return in;
+}
+
+std::optional<Spectrum> Material::emission_at(const SurfacePoint& at) const {
+  if (!emission_texture) return emission;
+  const auto c = emission_texture->lookup(at.uv[emission_texture->texcoord], true);
+  const Rgb rgb{emission_rgb.r * c[0], emission_rgb.g * c[1], emission_rgb.b * c[2]};
+  if (rgb.max() <= 0) return std::nullopt;
+  return RgbIlluminantSpectrum(rgb);
+}
+
+float Material::opacity(const SurfacePoint& at) const {
+  const auto* p = std::get_if<PbrMaterial>(&kind);
+  if (alpha_mode == AlphaMode::opaque || !p) return 1.f;
+  const float a = p->alpha * at.vertex_color[3];
+  return p->base_color_texture ? a * p->base_color_texture->lookup(at.uv[p->base_color_texture->texcoord], true)[3] : a;
+}
+
+PbrMaterial PbrMaterial::glass(Dielectric d, float roughness) {
+  PbrMaterial m;
+  m.metallic = 0;
+  m.roughness = roughness;
+  m.transmission = 1;
+  m.dielectric = std::move(d);
+  return m;
+}
+
+PbrMaterial PbrMaterial::metal_of(MeasuredMetal metal, float roughness) {
+  PbrMaterial m;
+  m.roughness = roughness;
+  m.metal = std::move(metal);
+  return m;
+}
+
+PbrMaterial PbrMaterial::metal_of(Rgb color, float roughness) {
+  PbrMaterial m;
+  m.base_color = color;
+  m.roughness = roughness;
+  return m;
+}
+
+PbrMaterial PbrMaterial::plastic(Rgb color, float roughness, float ior_value) {
+  PbrMaterial m;
+  m.base_color = color;
+  m.metallic = 0;
+  m.roughness = roughness;
+  m.dielectric = Dielectric(ConstantIor{ior_value});
+  return m;
 }
 
 }  // namespace prism

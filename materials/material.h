@@ -8,74 +8,146 @@
 
 #include "materials/bsdf.h"
 #include "materials/ior.h"
+#include "materials/texture.h"
 #include "spectral/spectrum.h"
 
 namespace prism {
 
+// Pure Lambertian reflection (reference scenes and tests; glTF surfaces are PbrMaterial).
 struct DiffuseMaterial {
   Spectrum reflectance = ConstantSpectrum{0.8f};
 };
 
-// A metal: complex index n(λ) + ik(λ), measured (catalogue) or derived from a colour.
-struct ConductorMaterial {
+// A metal's measured complex index n(λ) + ik(λ), from the catalogue.
+struct MeasuredMetal {
   Spectrum n, k;
-  std::string catalogue;  // the catalogue key of a measured metal; empty when made from a colour
+  std::string catalogue;
 };
 
-// The metal of a colour (glTF's baseColor of a metallic material): at each nm, the n, k of
-// Gulbrandsen's parametrisation whose normal-incidence reflectance is the colour's value and
-// whose edge tint makes the directional albedo equal to that of glTF's reference metal
-// (Schlick with F0 = colour). Measured metals in the visible sit close to it (edge tints
-// 0.9-1 for Cu, Al, Ag, Au); the Fresnel formula itself stays exact.
-ConductorMaterial conductor_from_reflectance(const Spectrum& reflectance);
-
-// A dielectric interface. Closed volumes (not thin-walled) are entered and left by paths; the
-// interior absorbs by Beer–Lambert with absorption coefficient σ_a(λ) per scene unit.
-struct DielectricMaterial {
-  DielectricMaterial(IorModel ior_model, Spectrum tint = ConstantSpectrum{1}, std::optional<Spectrum> sigma_a = {},
-                     bool thin = false)
-      : ior(std::move(ior_model)), transmission_tint(std::move(tint)), absorption(std::move(sigma_a)),
-        thin_walled(thin), dispersive(is_dispersive(ior)) {}
+// The dielectric interface of a surface: its index, and, for a closed volume (not a thin
+// wall), the Beer–Lambert absorption coefficient σ_a(λ) of its interior, per scene unit.
+struct Dielectric {
+  explicit Dielectric(IorModel ior_model = ConstantIor{1.5f}, std::optional<Spectrum> sigma_a = {}, bool thin = false)
+      : ior(std::move(ior_model)), absorption(std::move(sigma_a)), thin_walled(thin), dispersive(is_dispersive(ior)) {}
 
   IorModel ior;
-  Spectrum transmission_tint;
   std::optional<Spectrum> absorption;
   bool thin_walled;
   bool dispersive;  // derived from ior
 };
 
-using MaterialKind = std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial>;
+// Where on a surface a material is evaluated: its texture coordinates and vertex colour.
+struct SurfacePoint {
+  std::array<Vec2f, 2> uv{};                   // TEXCOORD_0, TEXCOORD_1
+  std::array<float, 4> vertex_color{1, 1, 1, 1};  // COLOR_0 (RGBA), white when absent
+};
+
+// A PbrMaterial's parameters at one surface point: factor × texture × vertex colour.
+struct SurfaceInputs {
+  Rgb base_color;
+  float alpha, metallic, roughness, transmission;
+  bool thin_walled;
+};
+
+// glTF's metallic–roughness material, interpreted physically (see pbr_bsdf.h and the README):
+// a metal (measured n, k, or coloured by the base colour) blended by `metallic` with a
+// dielectric interface over a Lambertian base, part of which transmits (`transmission`).
+struct PbrMaterial {
+  Rgb base_color{1, 1, 1};
+  float alpha = 1;
+  float metallic = 1, roughness = 1, transmission = 0;
+  float specular = 1;                 // KHR_materials_specular's factor: scales the dielectric's reflectance
+  Dielectric dielectric;
+  std::optional<MeasuredMetal> metal;  // replaces the base-colour metal when set
+  std::optional<Texture> base_color_texture;          // sRGB; RGB × base_color, A × alpha
+  std::optional<Texture> metallic_roughness_texture;  // linear; B × metallic, G × roughness
+  std::optional<Texture> transmission_texture;        // linear; R × transmission
+  std::optional<Texture> thickness_texture;           // linear; G = 0 marks a thin wall
+
+  SurfaceInputs inputs(const SurfacePoint& at) const;
+
+  static PbrMaterial glass(Dielectric d, float roughness = 0);
+  static PbrMaterial metal_of(MeasuredMetal m, float roughness = 0);
+  static PbrMaterial metal_of(Rgb color, float roughness = 0);
+  static PbrMaterial plastic(Rgb color, float roughness, float ior = 1.5f);  // metallic 0, opaque
+};
+
+using MaterialKind = std::variant<DiffuseMaterial, PbrMaterial>;
+
+enum class AlphaMode { opaque, mask, blend };
 
 struct Material {
   std::string name;
   MaterialKind kind;
   std::optional<Spectrum> emission;  // emitted radiance; front face only unless double_sided
   bool double_sided = false;
+  AlphaMode alpha_mode = AlphaMode::opaque;
+  float alpha_cutoff = 0.5f;
+  std::optional<Texture> normal_texture;  // tangent space, linear
+  float normal_scale = 1;
+  std::optional<Texture> emission_texture;  // sRGB; multiplies the emission's RGB
+  Rgb emission_rgb{0, 0, 0};                 // emissiveFactor × strength (for a textured emission)
 
-  const DielectricMaterial* dielectric() const { return std::get_if<DielectricMaterial>(&kind); }
+  // Emitted radiance at a point (with the texture, if any), or nothing.
+  std::optional<Spectrum> emission_at(const SurfacePoint& at) const;
+  // Opacity at a point: PbrMaterial alpha × texture × vertex colour; 1 when opaque.
+  float opacity(const SurfacePoint& at) const;
+
+  // The surface's dielectric interface, if light can pass it (for nested media and dispersion).
+  const Dielectric* dielectric() const {
+    const auto* p = std::get_if<PbrMaterial>(&kind);
+    return p && p->metallic < 1 && p->transmission > 0 ? &p->dielectric : nullptr;
+  }
 };
 
-// The BSDF of material m for the path's wavelengths. For a dielectric, `front` is the
-// dielectric on the front (normal) side of the surface, or nullptr for vacuum. A λ-dependent
-// index ratio terminates the path's secondary wavelengths (pbrt-v4 §10.5.1).
+// Whether the index ratio at a surface of m varies with λ, so that refraction sends each
+// wavelength its own way.
+inline bool disperses(const Material& m, const Dielectric* front) {
+  const Dielectric* d = m.dielectric();
+  return d && (d->dispersive || (front && front->dispersive));
+}
+
+// The n, k of a metal whose normal-incidence reflectance is r: Gulbrandsen's parametrisation
+// (2014, "Artist Friendly Metallic Fresnel", JCGT 3(4)) with the edge tint that gives the same
+// directional albedo as glTF's reference metal (Schlick, F0 = r). Measured metals in the
+// visible sit close to it (edge tints 0.9-1 for Cu, Al, Ag, Au); the Fresnel formula stays exact.
+std::array<float, 2> metal_nk_from_reflectance(float r);
+
+// The BSDF of material m for the path's wavelengths. `front` is the dielectric on the front
+// (normal) side of the surface, or nullptr for vacuum. A λ-dependent index ratio terminates the
+// path's secondary wavelengths (pbrt-v4 §10.5.1).
 template <int N>
-Bsdf<N> make_bsdf(const Material& m, SampledWavelengths<N>& lambda, const DielectricMaterial* front) {
+Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<N>& lambda, const Dielectric* front) {
   if (const auto* d = std::get_if<DiffuseMaterial>(&m.kind)) return DiffuseBsdf<N>(sample(d->reflectance, lambda));
-  if (const auto* c = std::get_if<ConductorMaterial>(&m.kind)) {
-    SampledSpectrum<N> n = sample(c->n, lambda), k = sample(c->k, lambda);
-    if (front) {  // relative to the surrounding dielectric
-      for (int i = 0; i < N; ++i) {
-        const float n_out = ior(front->ior, lambda[i]);
-        n[i] /= n_out;
-        k[i] /= n_out;
-      }
+  const PbrMaterial& material = std::get<PbrMaterial>(m.kind);
+  const SurfaceInputs p = material.inputs(at);
+  const float alpha = sqr(p.roughness);
+  const auto n_front = [&](int i) { return front ? ior(front->ior, lambda[i]) : 1.f; };
+  const RgbAlbedoSpectrum base(p.base_color);
+
+  // The metal, relative to the surrounding medium.
+  SampledSpectrum<N> n, k;
+  for (int i = 0; i < N && p.metallic > 0; ++i) {
+    if (material.metal) {
+      n[i] = evaluate(material.metal->n, lambda[i]);
+      k[i] = evaluate(material.metal->k, lambda[i]);
+    } else {
+      const auto nk = metal_nk_from_reflectance(base(lambda[i]));
+      n[i] = nk[0], k[i] = nk[1];
     }
-    return ConductorBsdf<N>(n, k);
+    n[i] /= n_front(i);
+    k[i] /= n_front(i);
   }
-  const auto& d = std::get<DielectricMaterial>(m.kind);
-  if (d.dispersive || (front && front->dispersive)) lambda.terminate_secondary();
-  const float eta = ior(d.ior, lambda[0]) / (front ? ior(front->ior, lambda[0]) : 1.f);
-  return DielectricBsdf<N>(eta, sample(d.transmission_tint, lambda), d.thin_walled);
+  const ConductorBsdf<N> metal(alpha, n, k);
+  if (p.metallic >= 1) return metal;
+
+  if (disperses(m, front)) lambda.terminate_secondary();
+  const float eta = ior(material.dielectric.ior, lambda[0]) / n_front(0);
+  SampledSpectrum<N> color;
+  for (int i = 0; i < N; ++i) color[i] = base(lambda[i]);
+  const DielectricBsdf<N> dielectric(alpha, eta, color, p.thin_walled, p.transmission, material.specular);
+  if (p.metallic <= 0 && p.transmission >= 1) return dielectric;
+  return PbrBsdf<N>(p.metallic, metal, dielectric, p.transmission, color, alpha, eta, material.specular);
 }
 
 }  // namespace prism

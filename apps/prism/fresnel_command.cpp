@@ -52,7 +52,7 @@ std::vector<Reflector> reflectors(const FresnelArgs& args) {
   const MaterialCatalogue& catalogue = MaterialCatalogue::standard();
   for (const std::string& key : args.materials) {
     if (catalogue.entry(key).metal) {
-      const ConductorMaterial m = catalogue.metal(key);
+      const MeasuredMetal m = catalogue.metal(key);
       out.push_back({key, [m](float c, float l) {
                        return fresnel_conductor_polarized(c, evaluate(m.n, l), evaluate(m.k, l));
                      }, true});

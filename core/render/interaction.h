@@ -16,6 +16,7 @@ struct SurfaceInteraction {
   Vec3f wo;       // unit direction back along the incoming ray
   float t;        // distance along the incoming ray
   const Material* material;
+  SurfacePoint at;  // texture coordinates and vertex colour, for the material
   uint32_t instance, prim;
 
   Ray spawn(const Vec3f& w) const { return spawn_ray(p, p_error, n, w); }

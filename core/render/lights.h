@@ -26,13 +26,24 @@ struct LightSample {
   Ray shadow_ray;
 };
 
-// One emissive triangle, uniform radiance, emitting from its front side (or both).
+// One emissive triangle, emitting from its front side (or both) its material's radiance,
+// uniform or textured.
 struct AreaLight {
   Vec3f p0, p1, p2;
   Vec3f n;  // unit front normal
   float area;
-  const Spectrum* radiance;
+  const Material* material;
+  std::array<Vec2f, 3> uv;  // vertex coordinates in the emission texture's set (if textured)
   bool two_sided;
+
+  template <int N>
+  SampledSpectrum<N> radiance(const Vec3f& b, const SampledWavelengths<N>& lambda) const {
+    if (!material->emission_texture) return sample(*material->emission, lambda);
+    SurfacePoint at;
+    at.uv[material->emission_texture->texcoord] = uv[0] * b.x + uv[1] * b.y + uv[2] * b.z;
+    const auto e = material->emission_at(at);
+    return e ? sample(*e, lambda) : SampledSpectrum<N>(0.f);
+  }
 
   bool emits_towards(const Vec3f& w) const { return two_sided || dot(n, w) > 0; }
 
@@ -55,8 +66,7 @@ struct AreaLight {
     if (!emits_towards(-wi)) return std::nullopt;
     const float pdf = pdf_solid_angle(distance, wi);
     if (!(pdf > 0.f) || std::isinf(pdf)) return std::nullopt;
-    return LightSample<N>{sample(*radiance, lambda), wi, pdf,
-                          spawn_ray_to(ctx.p, ctx.p_error, ctx.n, p, p_error, n)};
+    return LightSample<N>{radiance(b, lambda), wi, pdf, spawn_ray_to(ctx.p, ctx.p_error, ctx.n, p, p_error, n)};
   }
 };
 

@@ -18,7 +18,7 @@ class MediumStack {
 
   // The dielectric on the front (normal) side of a surface of material m hit from the front
   // (entering) or from behind: the medium the path is in, or, leaving m, the one around m.
-  const DielectricMaterial* front_dielectric(const Material& m, bool entering) const {
+  const Dielectric* front_dielectric(const Material& m, bool entering) const {
     const Material* front = innermost();
     if (!entering)
       for (int i = size_ - 1; i >= 0; --i)
@@ -31,7 +31,7 @@ class MediumStack {
 
   // After a refraction through a surface of m: enters or leaves m if it is a closed volume.
   void cross(const Material& m, bool entering) {
-    const DielectricMaterial* d = m.dielectric();
+    const Dielectric* d = m.dielectric();
     if (!d || d->thin_walled) return;
     entering ? enter(&m) : leave(&m);
   }
@@ -41,7 +41,7 @@ class MediumStack {
   // exp underflow both give exactly 0, never NaN.
   template <int N>
   SampledSpectrum<N> transmittance(float distance, const SampledWavelengths<N>& lambda) const {
-    const DielectricMaterial* d = innermost() ? innermost()->dielectric() : nullptr;
+    const Dielectric* d = innermost() ? innermost()->dielectric() : nullptr;
     if (!d || !d->absorption) return SampledSpectrum<N>(1.f);
     const SampledSpectrum<N> sigma_a = sample(*d->absorption, lambda);
     SampledSpectrum<N> t;

@@ -63,13 +63,13 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     if (material.emission) {
       const int light = world.area_light(si->instance, si->prim);
       const auto& area = std::get<AreaLight>(world.lights()[light]);
-      if (area.emits_towards(si->wo)) add_emitted(sample(*material.emission, lambda), light,
-                                                  area.pdf_solid_angle(si->t, ray.d));
+      if (const auto Le = material.emission_at(si->at); Le && area.emits_towards(si->wo))
+        add_emitted(sample(*Le, lambda), light, area.pdf_solid_angle(si->t, ray.d));
     }
     if (depth == options.max_depth) break;
 
     const bool entering = si->front_face();
-    const Bsdf<N> bsdf = make_bsdf(material, lambda, media.front_dielectric(material, entering));
+    const Bsdf<N> bsdf = make_bsdf(material, si->at, lambda, media.front_dielectric(material, entering));
     const Frame frame = Frame::from_z(si->ns);
     const Vec3f wo = frame.to_local(si->wo);
     if (!bsdf_is_specular(bsdf)) L += beta * sample_direct(world, *si, frame, bsdf, wo, lambda, sampler, counters);

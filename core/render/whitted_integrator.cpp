@@ -44,22 +44,25 @@ SampledSpectrum<N> direct_light(const Context& c, const SurfaceInteraction& si, 
   return L;
 }
 
-// The light leaving a dielectric surface towards wo: the reflected plus the transmitted branch.
+// Light leaving the hit towards wo: direct light through the BSDF's non-delta part, plus each
+// delta branch (mirror, refraction) traced recursively with its weight.
 template <int N>
-SampledSpectrum<N> split_dielectric(const Context& c, const SurfaceInteraction& si, const Material& material,
-                                    SampledWavelengths<N> lambda, const MediumStack& media, int depth,
-                                    float weight) {
+SampledSpectrum<N> scatter(const Context& c, const SurfaceInteraction& si, const SampledWavelengths<N>& lambda,
+                           const MediumStack& media, int depth, float weight) {
+  const Material& material = *si.material;
   const bool entering = si.front_face();
-  const auto bsdf = std::get<DielectricBsdf<N>>(make_bsdf(material, lambda, media.front_dielectric(material, entering)));
+  SampledWavelengths<N> bsdf_lambda = lambda;  // a dispersive interface only reaches here one wavelength at a time
+  const Bsdf<N> bsdf = make_bsdf(material, si.at, bsdf_lambda, media.front_dielectric(material, entering));
   const Frame frame = Frame::from_z(si.ns);
   const Vec3f wo = frame.to_local(si.wo);
-  const float R = bsdf.reflectance(wo);
   SampledSpectrum<N> L(0.f);
-  if (R > 0) L += trace(c, si.spawn(frame.to_world({-wo.x, -wo.y, wo.z})), lambda, media, depth + 1, weight * R) * R;
-  if (const auto t = bsdf.transmission(wo)) {
+  if (!bsdf_is_specular(bsdf)) L += direct_light(c, si, frame, bsdf, wo, lambda);
+  for (const DeltaLobe<N>& lobe : bsdf_delta_lobes(bsdf, wo)) {
+    const Vec3f wi = frame.to_world(lobe.wi);
+    if (!lobe.transmission && crosses_surface(si, wi)) continue;
     MediumStack beyond = media;
-    beyond.cross(material, entering);
-    L += t->weight * trace(c, si.spawn(frame.to_world(t->wi)), lambda, beyond, depth + 1, weight * t->weight.max());
+    if (lobe.transmission) beyond.cross(material, entering);
+    L += lobe.weight * trace(c, si.spawn(wi), lambda, beyond, depth + 1, weight * lobe.weight.max());
   }
   return L;
 }
@@ -72,33 +75,16 @@ SampledSpectrum<N> shade(const Context& c, const SurfaceInteraction& si, const S
   SampledSpectrum<N> L(0.f);
   if (material.emission) {
     const auto& area = std::get<AreaLight>(c.world.lights()[c.world.area_light(si.instance, si.prim)]);
-    if (area.emits_towards(si.wo)) L += sample(*material.emission, lambda);
+    if (const auto Le = material.emission_at(si.at); Le && area.emits_towards(si.wo)) L += sample(*Le, lambda);
   }
   if (depth == c.options.max_depth || weight < kMinBranchWeight) return L;
-
-  if (const DielectricMaterial* d = material.dielectric()) {
-    const DielectricMaterial* front = media.front_dielectric(material, si.front_face());
-    if constexpr (N > 1) {
-      if (d->dispersive || (front && front->dispersive)) {  // one trace per wavelength
-        for (int i = 0; i < N; ++i)
-          L[i] += split_dielectric(c, si, material, lambda.lane(i), media, depth, weight)[0];
-        return L;
-      }
+  if constexpr (N > 1) {
+    if (disperses(material, media.front_dielectric(material, si.front_face()))) {  // one trace per wavelength
+      for (int i = 0; i < N; ++i) L[i] += scatter(c, si, lambda.lane(i), media, depth, weight)[0];
+      return L;
     }
-    return L + split_dielectric(c, si, material, lambda, media, depth, weight);
   }
-
-  SampledWavelengths<N> lambda_copy = lambda;  // make_bsdf may only terminate for dielectrics
-  const Bsdf<N> bsdf = make_bsdf(material, lambda_copy, media.front_dielectric(material, si.front_face()));
-  const Frame frame = Frame::from_z(si.ns);
-  const Vec3f wo = frame.to_local(si.wo);
-  if (const auto* conductor = std::get_if<ConductorBsdf<N>>(&bsdf)) {
-    const SampledSpectrum<N> F = conductor->reflectance(cos_theta(wo));
-    const Vec3f wi = frame.to_world({-wo.x, -wo.y, wo.z});
-    if (crosses_surface(si, wi)) return L;
-    return L + F * trace(c, si.spawn(wi), lambda, media, depth + 1, weight * F.max());
-  }
-  return L + direct_light(c, si, frame, bsdf, wo, lambda);
+  return L + scatter(c, si, lambda, media, depth, weight);
 }
 
 template <int N>

@@ -1,6 +1,9 @@
 #include "render/world.h"
 
+#include <bit>
+
 #include "accel/triangle.h"
+#include "base/rng.h"
 #include "spectral/cie.h"
 
 namespace prism {
@@ -10,11 +13,15 @@ World::World(const Scene& scene) : scene_(scene), features_(analyze_features(sce
   std::vector<AccelInstance> accel_instances;
   for (const Instance& inst : scene.instances) {
     accel_instances.push_back({inst.mesh, inst.to_world});
-    InstanceData d{&scene.meshes[inst.mesh], &inst.to_world, {}, determinant3x3(inst.to_world) < 0};
+    InstanceData d{&scene.meshes[inst.mesh], &inst.to_world, {}, {}, determinant3x3(inst.to_world) < 0};
     const Transform inv_t = transpose(inverse(inst.to_world));
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) d.normal_matrix[r][c] = float(inv_t.m[r][c]);
+      for (int c = 0; c < 3; ++c) {
+        d.linear[r][c] = float(inst.to_world.m[r][c]);
+        d.normal_matrix[r][c] = float(inv_t.m[r][c]);
+      }
     instances_.push_back(d);
+    has_alpha_ |= scene.materials[scene.meshes[inst.mesh].material].alpha_mode != AlphaMode::opaque;
   }
   accel_ = Accel(accel_meshes_, accel_instances);
   add_lights();
@@ -33,15 +40,25 @@ void World::add_lights() {
   std::vector<float> powers;
   instance_light_base_.assign(instances_.size(), -1);
   for (uint32_t i = 0; i < instances_.size(); ++i) {
-    const Material& material = scene_.materials[instances_[i].mesh->material];
+    const Mesh& mesh = *instances_[i].mesh;
+    const Material& material = scene_.materials[mesh.material];
     if (!material.emission) continue;
-    const float luminance = spectrum_to_xyz(*material.emission).y;
+    // Power by luminance; a textured emission counts with its texture's mean.
+    float luminance = spectrum_to_xyz(*material.emission).y;
+    const Texture* texture = material.emission_texture ? &*material.emission_texture : nullptr;
+    if (texture) {
+      const auto mean = texture->image->mean(true);
+      luminance *= (0.2126f * mean[0] + 0.7152f * mean[1] + 0.0722f * mean[2]);
+    }
     instance_light_base_[i] = int(lights_.size());
-    for (uint32_t p = 0; p < instances_[i].mesh->indices.size() / 3; ++p) {
+    for (uint32_t p = 0; p < mesh.indices.size() / 3; ++p) {
       const auto v = world_vertices(instances_[i], p);
       const float area = triangle_area(v[0], v[1], v[2]);
       const Vec3f n = triangle_normal(v[0], v[1], v[2]) * (instances_[i].mirrored ? -1.f : 1.f);
-      lights_.push_back(AreaLight{v[0], v[1], v[2], n, area, &*material.emission, material.double_sided});
+      std::array<Vec2f, 3> uv{};
+      if (texture && !mesh.uv[texture->texcoord].empty())
+        for (int k = 0; k < 3; ++k) uv[k] = mesh.uv[texture->texcoord][mesh.indices[3 * p + k]];
+      lights_.push_back(AreaLight{v[0], v[1], v[2], n, area, &material, uv, material.double_sided});
       // Φ = π · A · L for a one-sided Lambertian emitter; luminance stands in for L.
       powers.push_back(area > 0 ? kPi * area * luminance * (material.double_sided ? 2.f : 1.f) : 0.f);
     }
@@ -67,35 +84,101 @@ void World::add_lights() {
   area_light_sampler_ = PowerLightSampler(area_powers);
 }
 
-std::optional<SurfaceInteraction> World::intersect(const Ray& ray) const {
-  AccelHit hit;
-  if (!accel_.intersect(ray, hit)) return std::nullopt;
+namespace {
+
+Vec3f apply(const float m[3][3], const Vec3f& v) {
+  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+}
+
+// Barycentric interpolation of a per-vertex attribute of triangle prim.
+template <typename T>
+T interpolate(const std::vector<T>& values, const Mesh& m, uint32_t prim, const float b[3]) {
+  T r{};
+  for (int k = 0; k < 3; ++k) {
+    const T& v = values[m.indices[3 * prim + k]];
+    if constexpr (std::is_same_v<T, std::array<float, 4>>) {
+      for (int c = 0; c < 4; ++c) r[c] += v[c] * b[k];
+    } else {
+      r = r + v * b[k];
+    }
+  }
+  return r;
+}
+
+}  // namespace
+
+SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const {
   const InstanceData& inst = instances_[hit.instance];
+  const Mesh& m = *inst.mesh;
   const auto v = world_vertices(inst, hit.prim);
+  const float b[3] = {hit.b0, hit.b1, hit.b2};
   SurfaceInteraction si;
-  si.p = v[0] * hit.b0 + v[1] * hit.b1 + v[2] * hit.b2;
-  si.p_error = (abs(v[0] * hit.b0) + abs(v[1] * hit.b1) + abs(v[2] * hit.b2)) * gamma(7);
+  si.p = v[0] * b[0] + v[1] * b[1] + v[2] * b[2];
+  si.p_error = (abs(v[0] * b[0]) + abs(v[1] * b[1]) + abs(v[2] * b[2])) * gamma(7);
   si.n = triangle_normal(v[0], v[1], v[2]) * (inst.mirrored ? -1.f : 1.f);
   si.ns = si.n;
-  const Mesh& m = *inst.mesh;
-  if (!m.normals.empty()) {
-    Vec3f ns_obj(0, 0, 0);
-    const float b[3] = {hit.b0, hit.b1, hit.b2};
-    for (int k = 0; k < 3; ++k) ns_obj += m.normals[m.indices[3 * hit.prim + k]] * b[k];
-    const auto& nm = inst.normal_matrix;
-    const Vec3f ns(nm[0][0] * ns_obj.x + nm[0][1] * ns_obj.y + nm[0][2] * ns_obj.z,
-                   nm[1][0] * ns_obj.x + nm[1][1] * ns_obj.y + nm[1][2] * ns_obj.z,
-                   nm[2][0] * ns_obj.x + nm[2][1] * ns_obj.y + nm[2][2] * ns_obj.z);
-    const float len = length(ns);
-    // The shading normal is taken on the geometric normal's side; a zero one falls back to it.
-    if (len > 0 && std::isfinite(len)) si.ns = face_forward(ns / len, si.n);
-  }
   si.wo = -ray.d;
   si.t = hit.t;
   si.material = &scene_.materials[m.material];
   si.instance = hit.instance;
   si.prim = hit.prim;
+  for (int set = 0; set < 2; ++set)
+    if (!m.uv[set].empty()) si.at.uv[set] = interpolate(m.uv[set], m, hit.prim, b);
+  if (!m.colors.empty()) si.at.vertex_color = interpolate(m.colors, m, hit.prim, b);
+
+  if (!m.normals.empty()) {
+    const Vec3f ns = apply(inst.normal_matrix, interpolate(m.normals, m, hit.prim, b));
+    const float len = length(ns);
+    // The shading normal is taken on the geometric normal's side; a zero one falls back to it.
+    if (len > 0 && std::isfinite(len)) si.ns = face_forward(ns / len, si.n);
+  }
+  const Material& material = *si.material;
+  if (material.normal_texture && !m.tangents.empty()) {
+    // Tangent-space normal map (glTF §3.9.3): n = normalize(T x + B y + N z), B = sign · N × T.
+    const auto t4 = interpolate(m.tangents, m, hit.prim, b);
+    const Vec3f t_world = apply(inst.linear, Vec3f(t4[0], t4[1], t4[2]));
+    const Vec3f t = t_world - si.ns * dot(si.ns, t_world);
+    const auto c = material.normal_texture->lookup(si.at.uv[material.normal_texture->texcoord], false);
+    const Vec3f local((2 * c[0] - 1) * material.normal_scale, (2 * c[1] - 1) * material.normal_scale, 2 * c[2] - 1);
+    if (length_squared(t) > 0 && length_squared(local) > 0) {
+      const Vec3f tn = normalize(t);
+      const Vec3f bn = cross(si.ns, tn) * ((t4[3] < 0) != inst.mirrored ? -1.f : 1.f);
+      const Vec3f mapped = tn * local.x + bn * local.y + si.ns * local.z;
+      if (length_squared(mapped) > 0 && is_finite(mapped)) si.ns = face_forward(normalize(mapped), si.n);
+    }
+  }
   return si;
+}
+
+bool World::cut_away(const SurfaceInteraction& si, const Ray& ray) const {
+  const Material& m = *si.material;
+  if (m.alpha_mode == AlphaMode::opaque) return false;
+  const float opacity = m.opacity(si.at);
+  if (m.alpha_mode == AlphaMode::mask) return opacity < m.alpha_cutoff;
+  const uint64_t h = hash_ints(std::bit_cast<uint32_t>(ray.o.x), std::bit_cast<uint32_t>(ray.o.y),
+                               std::bit_cast<uint32_t>(ray.o.z), std::bit_cast<uint32_t>(ray.d.x),
+                               std::bit_cast<uint32_t>(ray.d.y), std::bit_cast<uint32_t>(ray.d.z), si.prim);
+  return float(h >> 40) * 0x1p-24f >= opacity;
+}
+
+std::optional<SurfaceInteraction> World::intersect(Ray ray) const {
+  float travelled = 0;
+  for (;;) {
+    AccelHit hit;
+    if (!accel_.intersect(ray, hit)) return std::nullopt;
+    SurfaceInteraction si = interaction(ray, hit);
+    if (!has_alpha_ || !cut_away(si, ray)) {
+      si.t += travelled;
+      return si;
+    }
+    // Continue past the cut-away surface, along the same line.
+    const Vec3f o = offset_ray_origin(si.p, si.p_error, si.n, ray.d);
+    const float step = length(o - ray.o);
+    travelled += step;
+    ray = {o, ray.d, ray.tmax - step};
+    if (!(ray.tmax > 0)) return std::nullopt;
+  }
 }
 
 }  // namespace prism

@@ -19,8 +19,10 @@ class World {
  public:
   explicit World(const Scene& scene);
 
-  std::optional<SurfaceInteraction> intersect(const Ray& ray) const;
-  bool occluded(const Ray& ray) const { return accel_.occluded(ray); }
+  // The first surface along the ray that is not cut away by its material's alpha (glTF MASK
+  // and BLEND; BLEND decided stochastically by a hash of the ray, pbrt-v4 style).
+  std::optional<SurfaceInteraction> intersect(Ray ray) const;
+  bool occluded(const Ray& ray) const { return has_alpha_ ? intersect(ray).has_value() : accel_.occluded(ray); }
 
   const Scene& scene() const { return scene_; }
   const SceneFeatures& features() const { return features_; }
@@ -46,10 +48,13 @@ class World {
   struct InstanceData {
     const Mesh* mesh;
     const Transform* to_world;
-    float normal_matrix[3][3];  // inverse transpose of the linear part
+    float linear[3][3];         // the linear part (for tangents)
+    float normal_matrix[3][3];  // its inverse transpose (for normals)
     bool mirrored;              // negative determinant: winding (and so the front side) flips
   };
   std::array<Vec3f, 3> world_vertices(const InstanceData& inst, uint32_t prim) const;
+  SurfaceInteraction interaction(const Ray& ray, const AccelHit& hit) const;
+  bool cut_away(const SurfaceInteraction& si, const Ray& ray) const;
   void add_lights();
 
   const Scene& scene_;
@@ -60,6 +65,7 @@ class World {
   std::vector<Light> lights_;
   std::vector<int> instance_light_base_;
   int environment_light_ = -1;
+  bool has_alpha_ = false;
   PowerLightSampler light_sampler_;
   std::vector<uint32_t> delta_lights_, area_lights_;
   PowerLightSampler area_light_sampler_;

@@ -104,6 +104,10 @@ std::vector<T> read_accessor(const tinygltf::Model& model, int index, int compon
 
 }  // namespace
 
+int accessor_components(const tinygltf::Model& model, int index, const std::string& what) {
+  return tinygltf::GetNumComponentsInType(uint32_t(accessor_at(model, index, what).type));
+}
+
 std::vector<float> read_accessor_floats(const tinygltf::Model& model, int index, int components,
                                         const std::string& what) {
   return read_accessor<float>(model, index, components, what);

@@ -15,6 +15,9 @@ namespace prism {
 std::vector<float> read_accessor_floats(const tinygltf::Model& model, int index, int components,
                                         const std::string& what);
 
+// Components per element of accessor `index` (1 for SCALAR, 3 for VEC3, ...).
+int accessor_components(const tinygltf::Model& model, int index, const std::string& what);
+
 // Elements of an unsigned-integer scalar accessor (u8, u16 or u32).
 std::vector<uint32_t> read_accessor_indices(const tinygltf::Model& model, int index, const std::string& what);
 

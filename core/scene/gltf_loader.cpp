@@ -19,6 +19,7 @@ namespace {
 const std::set<std::string> kSupportedExtensions = {
     "KHR_materials_emissive_strength", "KHR_lights_punctual",   "KHR_materials_transmission",
     "KHR_materials_ior",               "KHR_materials_volume", "KHR_materials_dispersion",
+    "KHR_materials_specular",          "KHR_texture_transform", "KHR_mesh_quantization",
 };
 
 // A number from a material extension's object, or the extension's default.
@@ -37,8 +38,11 @@ std::string prism_extra(const tinygltf::Material& m, const char* field) {
   return prism.Get(field).Get<std::string>();
 }
 
-// Images are not decoded at load time: Prism reads only what a scene's materials use.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+// Images are kept encoded at load time and decoded only when a material that the scene's
+// meshes use refers to them.
+bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                        const unsigned char* bytes, int size, void*) {
+  image->image.assign(bytes, bytes + size);
   return true;
 }
 
@@ -85,10 +89,23 @@ class GltfLoader {
     out.double_sided = m.doubleSided;
     const auto& bc = m.pbrMetallicRoughness.baseColorFactor;
     if (bc.size() != 4 || !all_finite(bc)) fail("{}: {}: baseColorFactor must be 4 finite numbers", file_, context);
-    const Rgb base{float(bc[0]), float(bc[1]), float(bc[2])};
-    if (m.pbrMetallicRoughness.baseColorTexture.index >= 0)
-      warn_once("textures are not supported yet; using the material factors only");
-    out.kind = surface_kind(m, base, context);
+    PbrMaterial surface_model = surface(m, Rgb{float(bc[0]), float(bc[1]), float(bc[2])}, context);
+    surface_model.alpha = std::clamp(float(bc[3]), 0.f, 1.f);
+    const auto& pbr = m.pbrMetallicRoughness;
+    surface_model.base_color_texture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                               pbr.baseColorTexture.extensions, context);
+    surface_model.metallic_roughness_texture =
+        texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                pbr.metallicRoughnessTexture.extensions, context);
+    surface_model.transmission_texture = extension_texture(m, "KHR_materials_transmission", "transmissionTexture", context);
+    surface_model.thickness_texture = extension_texture(m, "KHR_materials_volume", "thicknessTexture", context);
+    out.kind = std::move(surface_model);
+    out.normal_texture = texture(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions, context);
+    out.normal_scale = float(m.normalTexture.scale);
+    if (m.alphaMode == "MASK") out.alpha_mode = AlphaMode::mask;
+    else if (m.alphaMode == "BLEND") out.alpha_mode = AlphaMode::blend;
+    else if (m.alphaMode != "OPAQUE") fail("{}: {}: unknown alphaMode '{}'", file_, context, m.alphaMode);
+    out.alpha_cutoff = float(m.alphaCutoff);
     const auto& ef = m.emissiveFactor;
     if (ef.size() != 3 || !all_finite(ef)) fail("{}: {}: emissiveFactor must be 3 finite numbers", file_, context);
     double strength = 1;
@@ -98,39 +115,104 @@ class GltfLoader {
       if (!std::isfinite(strength) || strength < 0)
         fail("{}: {}: emissiveStrength must be a non-negative number", file_, context);
     }
-    const Rgb emission{float(ef[0] * strength), float(ef[1] * strength), float(ef[2] * strength)};
-    if (emission.max() > 0) out.emission = RgbIlluminantSpectrum(emission);
+    out.emission_rgb = {float(ef[0] * strength), float(ef[1] * strength), float(ef[2] * strength)};
+    if (out.emission_rgb.max() > 0) {
+      out.emission = RgbIlluminantSpectrum(out.emission_rgb);
+      out.emission_texture = texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions, context);
+    }
     return out;
   }
 
-  // The surface model: a catalogue metal or glass named in extras, glTF transmission as a
-  // dielectric, metallic as a conductor coloured by baseColor, otherwise Lambertian. Rough and
-  // partly metallic or transmissive glTF materials are rounded to the nearest smooth model.
-  MaterialKind surface_kind(const tinygltf::Material& m, Rgb base, const std::string& context) {
+  // --- textures -----------------------------------------------------------------------------
+
+  // The decoded image of glTF image `index` (decoded once, on first use).
+  std::shared_ptr<const Image> image(int index, const std::string& context) {
+    check_index(index, model_.images, "image", context);
+    auto& cached = images_[index];
+    if (cached) return cached;
+    const tinygltf::Image& img = model_.images[index];
+    if (img.image.empty()) fail("{}: {}: image {} has no data", file_, context, index);
+    cached = Image::decode(img.image.data(), img.image.size(),
+                           fmt::format("{}: image {} '{}'", file_, index, img.uri.empty() ? img.name : img.uri));
+    return cached;
+  }
+
+  // glTF texture `index` read with TEXCOORD_`texcoord` and its KHR_texture_transform, or nothing.
+  std::optional<Texture> texture(int index, int texcoord, const tinygltf::ExtensionMap& extensions,
+                                 const std::string& context) {
+    if (index < 0) return std::nullopt;
+    check_index(index, model_.textures, "texture", context);
+    const tinygltf::Texture& t = model_.textures[index];
+    if (t.source < 0) fail("{}: {}: texture {} has no image source", file_, context, index);
+    Texture out;
+    out.image = image(t.source, context);
+    out.texcoord = texcoord;
+    if (t.sampler >= 0) {
+      check_index(t.sampler, model_.samplers, "sampler", context);
+      const tinygltf::Sampler& s = model_.samplers[t.sampler];
+      const auto wrap = [&](int mode) {
+        if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return Wrap::clamp_to_edge;
+        if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return Wrap::mirrored_repeat;
+        return Wrap::repeat;
+      };
+      out.wrap_s = wrap(s.wrapS);
+      out.wrap_t = wrap(s.wrapT);
+      out.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+    }
+    if (const auto it = extensions.find("KHR_texture_transform"); it != extensions.end()) {
+      const auto& x = it->second;
+      const auto vec2 = [&](const char* key, Vec2f fallback) {
+        if (!x.Has(key)) return fallback;
+        const auto& v = x.Get(key);
+        if (!v.IsArray() || v.ArrayLen() != 2) fail("{}: {}: KHR_texture_transform.{} must hold 2 numbers", file_, context, key);
+        return Vec2f(float(v.Get(0).GetNumberAsDouble()), float(v.Get(1).GetNumberAsDouble()));
+      };
+      out.transform.offset = vec2("offset", {0, 0});
+      out.transform.scale = vec2("scale", {1, 1});
+      if (x.Has("rotation")) out.transform.rotation = float(x.Get("rotation").GetNumberAsDouble());
+      if (x.Has("texCoord")) out.texcoord = x.Get("texCoord").GetNumberAsInt();
+    }
+    if (out.texcoord < 0 || out.texcoord > 1) fail("{}: {}: texture coordinate set {} (Prism reads TEXCOORD_0 and _1)", file_, context, out.texcoord);
+    return out;
+  }
+
+  // A texture named inside a material extension, e.g. KHR_materials_transmission's transmissionTexture.
+  std::optional<Texture> extension_texture(const tinygltf::Material& m, const char* extension, const char* field,
+                                           const std::string& context) {
+    const auto it = m.extensions.find(extension);
+    if (it == m.extensions.end() || !it->second.Has(field)) return std::nullopt;
+    const auto& info = it->second.Get(field);
+    if (!info.IsObject() || !info.Has("index")) fail("{}: {}: {}.{} needs an index", file_, context, extension, field);
+    tinygltf::ExtensionMap ext;
+    if (info.Has("extensions") && info.Get("extensions").Has("KHR_texture_transform"))
+      ext["KHR_texture_transform"] = info.Get("extensions").Get("KHR_texture_transform");
+    return texture(info.Get("index").GetNumberAsInt(), info.Has("texCoord") ? info.Get("texCoord").GetNumberAsInt() : 0,
+                   ext, context);
+  }
+
+  // glTF's metallic-roughness parameters with the KHR extensions Prism honours; extras may name
+  // a catalogue metal ({"prism": {"metal": "Cu"}}) or glass ({"prism": {"glass": "N-BK7"}}).
+  PbrMaterial surface(const tinygltf::Material& m, Rgb base, const std::string& context) {
     const auto number = [&](const char* ext, const char* field, double fallback, double lo, double hi) {
       const double v = extension_number(m, ext, field, fallback);
       if (!(v >= lo && v <= hi)) fail("{}: {}: {}.{} must be a number in [{}, {}]", file_, context, ext, field, lo, hi);
       return v;
     };
-    const double metallic = m.pbrMetallicRoughness.metallicFactor;
-    const double roughness = m.pbrMetallicRoughness.roughnessFactor;
-    const double transmission = number("KHR_materials_transmission", "transmissionFactor", 0, 0, 1);
-    const std::string metal = prism_extra(m, "metal"), glass = prism_extra(m, "glass");
-    if ((metallic > 0 && metallic < 1) || (transmission > 0 && transmission < 1))
-      warn_once("partly metallic or transmissive materials are rounded to the nearer of the two for now");
-    const bool is_metal = !metal.empty() || (glass.empty() && transmission < 0.5 && metallic >= 0.5);
-    const bool is_glass = !glass.empty() || (!is_metal && transmission >= 0.5);
-    if ((is_metal || is_glass) && roughness > 0)
-      warn_once("rough metals and glass are rendered smooth for now (roughness ignored)");
-
-    if (is_metal)
-      return metal.empty() ? conductor_from_reflectance(RgbAlbedoSpectrum(base))
-                           : MaterialCatalogue::standard().metal(metal);
-    if (!is_glass) return DiffuseMaterial{RgbAlbedoSpectrum(base)};
+    PbrMaterial p;
+    p.base_color = base;
+    p.metallic = std::clamp(float(m.pbrMetallicRoughness.metallicFactor), 0.f, 1.f);
+    p.roughness = std::clamp(float(m.pbrMetallicRoughness.roughnessFactor), 0.f, 1.f);
+    p.transmission = float(number("KHR_materials_transmission", "transmissionFactor", 0, 0, 1));
+    p.specular = float(number("KHR_materials_specular", "specularFactor", 1, 0, 1));
+    if (const auto it = m.extensions.find("KHR_materials_specular");
+        it != m.extensions.end() && it->second.Has("specularColorFactor"))
+      warn_once("KHR_materials_specular's specularColorFactor is not supported; using the factor only");
 
     IorModel ior_model = ConstantIor{float(number("KHR_materials_ior", "ior", 1.5, 1, 1e3))};
-    if (!glass.empty()) {
+    if (const std::string glass = prism_extra(m, "glass"); !glass.empty()) {
       ior_model = MaterialCatalogue::standard().dielectric(glass);
+      p.metallic = 0;
+      p.transmission = 1;
     } else if (const double dispersion = number("KHR_materials_dispersion", "dispersion", 0, 0, 1e6); dispersion > 0) {
       // KHR_materials_dispersion: dispersion = 20 / V_d.
       ior_model = AbbeIor{std::get<ConstantIor>(ior_model).n, float(20 / dispersion)};
@@ -150,15 +232,20 @@ class GltfLoader {
       }
       if (sigma.max() > 0) absorption = RgbUnboundedSpectrum(sigma);
     }
-    return DielectricMaterial(std::move(ior_model), RgbAlbedoSpectrum(base), std::move(absorption), thickness == 0);
+    p.dielectric = Dielectric(std::move(ior_model), std::move(absorption), thickness == 0);
+    if (const std::string metal = prism_extra(m, "metal"); !metal.empty()) {
+      p.metal = MaterialCatalogue::standard().metal(metal);
+      p.metallic = 1;
+    }
+    return p;
   }
 
   uint32_t material_index(int gltf_material, const std::string& context) {
     if (gltf_material < 0) {
-      // glTF's default material is white; Prism renders it as a white diffuse surface.
+      // glTF's default material: white, metallic 1, roughness 1 (glTF 2.0 §3.9.2).
       if (default_material_ < 0) {
         default_material_ = int(scene_.materials.size());
-        scene_.materials.push_back({"default", DiffuseMaterial{RgbAlbedoSpectrum(Rgb{1, 1, 1})}, {}, false});
+        scene_.materials.push_back({"default", PbrMaterial{}, {}, false});
       }
       return uint32_t(default_material_);
     }
@@ -213,6 +300,25 @@ class GltfLoader {
         mesh.normals[i] = len > 0 && std::isfinite(len) ? v / len : Vec3f(0, 0, 0);  // 0: use the face normal
       }
     }
+    for (int set = 0; set < 2; ++set)
+      if (const auto uv = prim.attributes.find("TEXCOORD_" + std::to_string(set)); uv != prim.attributes.end()) {
+        const auto t = read_accessor_floats(model_, uv->second, 2, fmt::format("{} TEXCOORD_{}", context, set));
+        if (t.size() / 2 != mesh.positions.size()) fail("{} TEXCOORD_{}: {} entries for {} vertices", context, set, t.size() / 2, mesh.positions.size());
+        for (size_t i = 0; i < t.size(); i += 2) mesh.uv[set].push_back({t[i], t[i + 1]});
+      }
+    if (const auto col = prim.attributes.find("COLOR_0"); col != prim.attributes.end()) {
+      const int components = accessor_components(model_, col->second, context + " COLOR_0");
+      if (components != 3 && components != 4) fail("{} COLOR_0: must be VEC3 or VEC4", context);
+      const auto c = read_accessor_floats(model_, col->second, components, context + " COLOR_0");
+      if (c.size() / components != mesh.positions.size()) fail("{} COLOR_0: {} colours for {} vertices", context, c.size() / components, mesh.positions.size());
+      for (size_t i = 0; i < c.size(); i += components)
+        mesh.colors.push_back({c[i], c[i + 1], c[i + 2], components == 4 ? c[i + 3] : 1.f});
+    }
+    if (const auto tan = prim.attributes.find("TANGENT"); tan != prim.attributes.end()) {
+      const auto t = read_accessor_floats(model_, tan->second, 4, context + " TANGENT");
+      if (t.size() / 4 != mesh.positions.size()) fail("{} TANGENT: {} tangents for {} vertices", context, t.size() / 4, mesh.positions.size());
+      for (size_t i = 0; i < t.size(); i += 4) mesh.tangents.push_back({t[i], t[i + 1], t[i + 2], t[i + 3] < 0 ? -1.f : 1.f});
+    }
     if (prim.indices >= 0) {
       mesh.indices = read_accessor_indices(model_, prim.indices, context + " indices");
       for (uint32_t i : mesh.indices)
@@ -227,6 +333,8 @@ class GltfLoader {
       mesh.indices.resize(mesh.indices.size() - mesh.indices.size() % 3);
     }
     mesh.material = material_index(prim.material, context);
+    const Material& material = scene_.materials[mesh.material];
+    if (material.normal_texture && mesh.tangents.empty()) generate_tangents(mesh, material.normal_texture->texcoord);
     return mesh;
   }
 
@@ -345,6 +453,7 @@ class GltfLoader {
   std::vector<std::vector<uint32_t>> meshes_;
   std::vector<bool> mesh_loaded_;
   std::map<int, uint32_t> material_map_;
+  std::map<int, std::shared_ptr<const Image>> images_;
   int default_material_ = -1;
   std::set<std::string> warned_;
 };
@@ -361,7 +470,7 @@ bool is_binary_gltf(const std::filesystem::path& file) {
 Scene load_gltf(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file)) fail("{}: no such file", file.string());
   tinygltf::TinyGLTF reader;
-  reader.SetImageLoader(skip_image, nullptr);
+  reader.SetImageLoader(keep_encoded_image, nullptr);
   tinygltf::Model model;
   std::string err, warn;
   const bool ok = is_binary_gltf(file) ? reader.LoadBinaryFromFile(&model, &err, &warn, file.string())

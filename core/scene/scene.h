@@ -2,6 +2,7 @@
 // The scene as loaded: meshes in object space placed by instances, materials, lights, cameras,
 // environment. Plain data; rendering structures are built from it by core/render.
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -14,14 +15,22 @@
 
 namespace prism {
 
-// One glTF primitive: an indexed triangle list with one material.
+// One glTF primitive: an indexed triangle list with one material. Optional per-vertex
+// attributes are empty when absent.
 struct Mesh {
   std::string name;
   std::vector<Vec3f> positions;
-  std::vector<Vec3f> normals;  // per vertex, or empty (flat shading)
+  std::vector<Vec3f> normals;                  // empty: flat shading
+  std::array<std::vector<Vec2f>, 2> uv;        // TEXCOORD_0, TEXCOORD_1
+  std::vector<std::array<float, 4>> colors;    // COLOR_0, RGBA
+  std::vector<std::array<float, 4>> tangents;  // xyz and the bitangent's sign (TANGENT, or generated)
   std::vector<uint32_t> indices;
   uint32_t material = 0;
 };
+
+// Per-vertex tangents from the texture coordinates (Lengyel 2001, "Computing Tangent Space
+// Basis Vectors for an Arbitrary Mesh"), for normal maps on meshes that bring none.
+void generate_tangents(Mesh& mesh, int uv_set);
 
 struct Instance {
   uint32_t mesh;

@@ -11,7 +11,7 @@ SceneFeatures analyze_features(const Scene& scene) {
       f.dispersion |= d->dispersive;
       f.absorption |= d->absorption.has_value() && !d->thin_walled;
     }
-    if (const auto* c = std::get_if<ConductorMaterial>(&m.kind)) f.measured_metals |= !c->catalogue.empty();
+    if (const auto* p = std::get_if<PbrMaterial>(&m.kind)) f.measured_metals |= p->metal && p->metallic > 0;
   }
   f.point_lights = !scene.point_lights.empty();
   f.environment = scene.environment.has_value();

@@ -27,7 +27,7 @@ float conductor_approximation(float cos_i, float n, float k) {
 }  // namespace
 
 TEST_CASE("copper (Johnson & Christy 1972) at 550 nm reflects as measured") {
-  const ConductorMaterial cu = MaterialCatalogue::standard().metal("Cu");
+  const MeasuredMetal cu = MaterialCatalogue::standard().metal("Cu");
   const float n = evaluate(cu.n, 550), k = evaluate(cu.k, 550);
   const float angles[] = {0, 45, 60, 80, 89};
   const float expected[] = {0.6235f, 0.6221f, 0.6254f, 0.7300f, 0.9606f};
@@ -40,7 +40,7 @@ TEST_CASE("copper (Johnson & Christy 1972) at 550 nm reflects as measured") {
 
 TEST_CASE("gold and silver normal-incidence reflectance at 450, 550, 650 nm") {
   const auto check = [](const char* key, std::array<float, 3> expected) {
-    const ConductorMaterial m = MaterialCatalogue::standard().metal(key);
+    const MeasuredMetal m = MaterialCatalogue::standard().metal(key);
     const float lambdas[] = {450, 550, 650};
     for (int i = 0; i < 3; ++i) {
       INFO(key << " at " << lambdas[i] << " nm");
@@ -54,7 +54,7 @@ TEST_CASE("gold and silver normal-incidence reflectance at 450, 550, 650 nm") {
 TEST_CASE("every catalogue metal is a metal over the visible range") {
   for (const auto& e : MaterialCatalogue::standard().entries()) {
     if (!e.metal) continue;
-    const ConductorMaterial m = MaterialCatalogue::standard().metal(e.key);
+    const MeasuredMetal m = MaterialCatalogue::standard().metal(e.key);
     for (float l = kLambdaMin; l <= kLambdaMax; l += 10) {
       INFO(e.key << " at " << l << " nm");
       const float n = evaluate(m.n, l), k = evaluate(m.k, l);

@@ -14,7 +14,7 @@ using namespace prism;
 namespace {
 
 Material glass(IorModel ior, std::optional<Spectrum> absorption = {}) {
-  return Material{"glass", DielectricMaterial(std::move(ior), ConstantSpectrum{1}, std::move(absorption)), {}, false};
+  return Material{"glass", PbrMaterial::glass(Dielectric(std::move(ior), std::move(absorption))), {}, false};
 }
 
 // A closed glass icosphere under a uniform environment of radiance 1, filling the image.
@@ -63,12 +63,10 @@ TEST_CASE("Beer-Lambert: a slab transmits exp(-sigma_a d) straight on") {
                                                                    WavelengthSampling::uniform);
       RayCounters counters;
       const auto L = path_radiance(world, Ray{{0, 0, 3}, {0, 0, -1}, kInfinity}, lambda, sampler, options, counters);
-      const double expected = std::exp(-double(evaluate(std::get<DielectricMaterial>(scene.materials[0].kind).absorption.value(),
-                                                        lambda[0])) * 0.5) *
-                              evaluate(*scene.environment, lambda[0]);
+      const Spectrum& sigma_a = *scene.materials[0].dielectric()->absorption;
+      const double expected = std::exp(-double(evaluate(sigma_a, lambda[0])) * 0.5) * evaluate(*scene.environment, lambda[0]);
       INFO("sigma " << sigma << " lambda " << lambda[0]);
-      CHECK(evaluate(*std::get<DielectricMaterial>(scene.materials[0].kind).absorption, lambda[0]) ==
-            Approx(sigma).epsilon(1e-4));
+      CHECK(evaluate(sigma_a, lambda[0]) == Approx(sigma).epsilon(1e-4));
       CHECK(L[0] == Approx(expected).epsilon(1e-3).margin(1e-30));
       CHECK(std::isfinite(L[0]));
     }
@@ -79,13 +77,13 @@ TEST_CASE("a dispersive interface keeps only the hero wavelength; a plain one ke
   Material flint = glass(MaterialCatalogue::standard().dielectric("N-SF11"));
   Material plain = glass(ConstantIor{1.5f});
   auto lambda = SampledWavelengths<4>::sample(0.3f);
-  make_bsdf(plain, lambda, nullptr);
+  make_bsdf(plain, {}, lambda, nullptr);
   CHECK_FALSE(lambda.secondary_terminated());
-  make_bsdf(flint, lambda, nullptr);
+  make_bsdf(flint, {}, lambda, nullptr);
   CHECK(lambda.secondary_terminated());
   // A plain glass inside a dispersive medium also sees a λ-dependent index ratio.
   auto lambda2 = SampledWavelengths<4>::sample(0.3f);
-  make_bsdf(plain, lambda2, flint.dielectric());
+  make_bsdf(plain, {}, lambda2, flint.dielectric());
   CHECK(lambda2.secondary_terminated());
 }
 
@@ -96,7 +94,7 @@ TEST_CASE("the Whitted and path integrators agree on smooth Fresnel surfaces lit
   // albedo 0.2, as it scales with the albedo), inside the 1% tolerance below.
   Scene scene;
   scene.materials.push_back(test::diffuse({0.1f, 0.1f, 0.1f}, "floor"));
-  scene.materials.push_back(Material{"gold", MaterialCatalogue::standard().metal("Au"), {}, false});
+  scene.materials.push_back(Material{"gold", PbrMaterial::metal_of(MaterialCatalogue::standard().metal("Au")), {}, false});
   scene.materials.push_back(glass(ConstantIor{1.5f}));
   test::add_mesh(scene, test::make_quad({-4, 0, 4}, {8, 0, 0}, {0, 0, -8}, 0));
   test::add_mesh(scene, test::make_icosphere({-0.6f, 0.5f, 0}, 0.5f, 3, 1));

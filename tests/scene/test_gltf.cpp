@@ -181,7 +181,7 @@ TEST_CASE("every shared glTF asset loads", "[shared]") {
   log::set_level(log::Level::info);
 }
 
-TEST_CASE("glTF materials map to Prism's optics: transmission, ior, dispersion, volume, metals, extras") {
+TEST_CASE("glTF materials map to Prism's optics: transmission, ior, dispersion, volume, specular, metals, extras") {
   const auto dir = test::temp_dir("gltf_materials");
   TriangleGltf base;
   const auto with_material = [&](const std::string& material_json) {
@@ -192,7 +192,8 @@ TEST_CASE("glTF materials map to Prism's optics: transmission, ior, dispersion, 
     return load_gltf(write(dir, "m.gltf", json));
   };
   // Transmission with IOR, dispersion and an absorbing volume: a closed dispersive dielectric.
-  Scene s = with_material(R"({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
+  Scene s = with_material(R"({"pbrMetallicRoughness": {"metallicFactor": 0},
+      "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
       "KHR_materials_ior": {"ior": 1.6}, "KHR_materials_dispersion": {"dispersion": 0.5},
       "KHR_materials_volume": {"thicknessFactor": 1, "attenuationDistance": 2, "attenuationColor": [0.5, 0.5, 0.5]}}})");
   const auto* d = s.materials[0].dielectric();
@@ -208,23 +209,35 @@ TEST_CASE("glTF materials map to Prism's optics: transmission, ior, dispersion, 
   CHECK(f.absorption);
 
   // Transmission without a volume is a thin wall; without dispersion the index is constant.
-  s = with_material(R"({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}}})");
+  s = with_material(R"({"pbrMetallicRoughness": {"metallicFactor": 0},
+      "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}}})");
   REQUIRE(s.materials[0].dielectric());
   CHECK(s.materials[0].dielectric()->thin_walled);
   CHECK_FALSE(s.materials[0].dielectric()->dispersive);
   CHECK(ior(s.materials[0].dielectric()->ior, 400) == Approx(1.5));
 
   // metallic = 1: a conductor coloured by baseColor; extras name a measured metal or glass.
-  s = with_material(R"({"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.6, 0.5, 1], "metallicFactor": 1}})");
-  REQUIRE(std::holds_alternative<ConductorMaterial>(s.materials[0].kind));
-  CHECK(std::get<ConductorMaterial>(s.materials[0].kind).catalogue.empty());
+  s = with_material(R"({"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.6, 0.5, 1], "metallicFactor": 1,
+      "roughnessFactor": 0.3}})");
+  const auto& metal = std::get<PbrMaterial>(s.materials[0].kind);
+  CHECK(metal.metallic == 1);
+  CHECK(metal.roughness == Approx(0.3f));
+  CHECK_FALSE(metal.metal);
+  CHECK(metal.base_color.g == Approx(0.6f));
+  CHECK_FALSE(s.materials[0].dielectric());  // opaque
   s = with_material(R"({"extras": {"prism": {"metal": "Au"}}})");
-  REQUIRE(std::holds_alternative<ConductorMaterial>(s.materials[0].kind));
-  CHECK(std::get<ConductorMaterial>(s.materials[0].kind).catalogue == "Au");
+  REQUIRE(std::get<PbrMaterial>(s.materials[0].kind).metal);
+  CHECK(std::get<PbrMaterial>(s.materials[0].kind).metal->catalogue == "Au");
   CHECK(analyze_features(s).measured_metals);
   s = with_material(R"({"extras": {"prism": {"glass": "N-BK7"}}})");
   REQUIRE(s.materials[0].dielectric());
   CHECK(ior(s.materials[0].dielectric()->ior, 587.56f) == Approx(1.5168).margin(1e-4));
+
+  // KHR_materials_specular scales the dielectric's reflectance; defaults follow glTF.
+  s = with_material(R"({"pbrMetallicRoughness": {"metallicFactor": 0},
+      "extensions": {"KHR_materials_specular": {"specularFactor": 0.25}}})");
+  CHECK(std::get<PbrMaterial>(s.materials[0].kind).specular == Approx(0.25f));
+  CHECK(std::get<PbrMaterial>(s.materials[0].kind).transmission == 0);
 
   // Errors name the problem.
   CHECK_THROWS_WITH(with_material(R"({"extras": {"prism": {"metal": "Mithril"}}})"), Catch::Contains("Mithril"));

@@ -1,0 +1,91 @@
+#include "materials/texture.h"
+
+#include <stb_image.h>
+
+#include <cmath>
+
+#include "base/error.h"
+
+namespace prism {
+
+Image::Image(int width, int height, std::vector<uint8_t> rgba)
+    : width_(width), height_(height), rgba_(std::move(rgba)) {
+  if (width <= 0 || height <= 0 || rgba_.size() != size_t(width) * height * 4) fail("image of {}x{} has {} bytes", width, height, rgba_.size());
+}
+
+std::shared_ptr<const Image> Image::decode(const unsigned char* bytes, size_t size, const std::string& what) {
+  int w = 0, h = 0, channels = 0;
+  unsigned char* data = stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4);
+  if (!data) fail("{}: cannot decode the image ({})", what, stbi_failure_reason() ? stbi_failure_reason() : "unknown format");
+  std::vector<uint8_t> rgba(data, data + size_t(w) * h * 4);
+  stbi_image_free(data);
+  return std::make_shared<Image>(w, h, std::move(rgba));
+}
+
+float srgb_to_linear(uint8_t v) {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) {
+      const double c = i / 255.0;
+      t[i] = float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+    }
+    return t;
+  }();
+  return table[v];
+}
+
+std::array<float, 4> Image::mean(bool srgb) const {
+  std::array<double, 4> sum{};
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x)
+      for (int c = 0; c < 4; ++c) sum[c] += srgb && c < 3 ? srgb_to_linear(texel(x, y)[c]) : texel(x, y)[c] / 255.0;
+  const double n = double(width_) * height_;
+  return {float(sum[0] / n), float(sum[1] / n), float(sum[2] / n), float(sum[3] / n)};
+}
+
+Vec2f TextureTransform::apply(Vec2f uv) const {
+  const float c = std::cos(rotation), s = std::sin(rotation);
+  const Vec2f scaled(uv.x * scale.x, uv.y * scale.y);
+  // glTF's rotation matrix [[c, s], [−s, c]] (the extension's column-major 3x3).
+  return {c * scaled.x + s * scaled.y + offset.x, -s * scaled.x + c * scaled.y + offset.y};
+}
+
+namespace {
+
+// A texel index in [0, n) for integer coordinate i under the wrap mode.
+int wrap_index(int i, int n, Wrap mode) {
+  switch (mode) {
+    case Wrap::clamp_to_edge: return std::clamp(i, 0, n - 1);
+    case Wrap::mirrored_repeat: {
+      const int period = 2 * n, m = ((i % period) + period) % period;
+      return m < n ? m : period - 1 - m;
+    }
+    case Wrap::repeat: break;
+  }
+  return ((i % n) + n) % n;
+}
+
+}  // namespace
+
+std::array<float, 4> Texture::lookup(Vec2f uv, bool srgb) const {
+  uv = transform.apply(uv);
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = {0, 0};
+  const int w = image->width(), h = image->height();
+  const auto fetch = [&](int x, int y) {
+    const uint8_t* t = image->texel(wrap_index(x, w, wrap_s), wrap_index(y, h, wrap_t));
+    std::array<float, 4> v;
+    for (int c = 0; c < 4; ++c) v[c] = srgb && c < 3 ? srgb_to_linear(t[c]) : t[c] / 255.f;
+    return v;
+  };
+  // Texel centres sit at half-integers; huge coordinates are clamped before the int cast.
+  const float x = std::clamp(uv.x * float(w) - 0.5f, -1e8f, 1e8f), y = std::clamp(uv.y * float(h) - 0.5f, -1e8f, 1e8f);
+  if (nearest) return fetch(int(std::floor(x + 0.5f)), int(std::floor(y + 0.5f)));
+  const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+  const float tx = x - float(x0), ty = y - float(y0);
+  const auto a = fetch(x0, y0), b = fetch(x0 + 1, y0), c = fetch(x0, y0 + 1), d = fetch(x0 + 1, y0 + 1);
+  std::array<float, 4> r;
+  for (int i = 0; i < 4; ++i) r[i] = (1 - ty) * ((1 - tx) * a[i] + tx * b[i]) + ty * ((1 - tx) * c[i] + tx * d[i]);
+  return r;
+}
+
+}  // namespace prism

@@ -1,0 +1,192 @@
+// Energy conservation and sampling of every BSDF lobe and glTF material combination, at a grid
+// of incident angles and at all of a path's wavelengths:
+//   * directional albedo ∫ f |cos θ_i| dω_i (transmission counted as energy: times η'², undoing
+//     the radiance scaling across the interface) by Monte Carlo with the lobe's own sampling and,
+//     separately, with uniform sphere sampling: ≤ 1, equal to each other, and = 1 for lossless
+//     lobes (albedo-1 Lambert, clear smooth dielectric R + T);
+//   * χ² goodness of fit of each non-delta lobe's sampling against its pdf.
+// Tolerances are 4 standard errors of the estimates (from their sample variance), not tuned.
+
+#include <catch2/catch.hpp>
+
+#include <functional>
+
+#include "base/rng.h"
+#include "materials/catalogue.h"
+#include "materials/material.h"
+#include "support/chi2.h"
+
+using namespace prism;
+
+namespace {
+
+constexpr int N = 4;
+
+struct Case {
+  std::string name;
+  std::function<Bsdf<N>()> make;
+  bool lossless = false;
+  float eta = 1;        // relative index of a solid dielectric (transmission scales radiance by 1/η'²)
+  bool sharp = false;   // lobes of roughness < 0.2 are too narrow for uniform sampling to resolve
+};
+
+SampledWavelengths<N> wavelengths() { return SampledWavelengths<N>::sample(0.37f); }
+
+Bsdf<N> bsdf_of(const PbrMaterial& m, float front_ior = 1) {
+  auto lambda = wavelengths();
+  const Dielectric front(ConstantIor{front_ior});
+  return make_bsdf(Material{"m", m, {}, false}, {}, lambda, front_ior == 1 ? nullptr : &front);
+}
+
+std::vector<Case> cases() {
+  std::vector<Case> c;
+  c.push_back({"Lambert albedo 1", [] { return Bsdf<N>(DiffuseBsdf<N>(SampledSpectrum<N>(1.f))); }, true});
+  c.push_back({"Lambert albedo 0.5", [] { return Bsdf<N>(DiffuseBsdf<N>(SampledSpectrum<N>(0.5f))); }});
+  c.push_back({"smooth glass 1.5", [] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{1.5f}))); }, true, 1.5f});
+  c.push_back({"smooth glass seen from water", [] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{1.5f})), 1.33f); },
+               true, 1.5f / 1.33f});
+  c.push_back({"smooth thin glass", [] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{1.5f}, {}, true))); }, true});
+  const MeasuredMetal cu = MaterialCatalogue::standard().metal("Cu");
+  for (float roughness : {0.05f, 0.3f, 1.f}) {
+    const std::string r = " roughness " + std::to_string(roughness).substr(0, 4);
+    const bool sharp = roughness < 0.2f;
+    c.push_back({"Cu" + r, [=] { return bsdf_of(PbrMaterial::metal_of(cu, roughness)); }, false, 1, sharp});
+    c.push_back({"gold-coloured metal" + r, [=] { return bsdf_of(PbrMaterial::metal_of(Rgb{1, 0.78f, 0.34f}, roughness)); },
+                 false, 1, sharp});
+    c.push_back({"glass 1.5" + r, [=] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{1.5f}), roughness)); },
+                 false, 1.5f, sharp});
+    c.push_back({"diamond 2.42" + r, [=] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{2.42f}), roughness)); },
+                 false, 2.42f, sharp});
+    c.push_back({"thin glass" + r, [=] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{1.5f}, {}, true), roughness)); },
+                 false, 1, sharp});
+    c.push_back({"white plastic" + r, [=] { return bsdf_of(PbrMaterial::plastic(Rgb{1, 1, 1}, roughness)); }, false, 1, sharp});
+    c.push_back({"half-metal" + r, [=] {
+                   PbrMaterial m = PbrMaterial::plastic(Rgb{0.8f, 0.5f, 0.3f}, roughness);
+                   m.metallic = 0.5f;
+                   return bsdf_of(m);
+                 }, false, 1, sharp});
+    c.push_back({"half-transmissive, specular 0.5" + r, [=] {
+                   PbrMaterial m = PbrMaterial::plastic(Rgb{0.9f, 0.9f, 0.9f}, roughness);
+                   m.transmission = 0.5f;
+                   m.specular = 0.5f;
+                   return bsdf_of(m);
+                 }, false, 1.5f, sharp});
+  }
+  c.push_back({"white plastic smooth", [] { return bsdf_of(PbrMaterial::plastic(Rgb{1, 1, 1}, 0)); }});
+  return c;
+}
+
+struct Estimate {
+  SampledSpectrum<N> mean, standard_error;
+};
+
+// Mean and standard error of per-sample spectra.
+struct Accumulator {
+  SampledSpectrum<N> sum{0.f}, sum_sq{0.f};
+  int n = 0;
+  void add(const SampledSpectrum<N>& x) {
+    sum += x;
+    sum_sq += x * x;
+    ++n;
+  }
+  Estimate result() const {
+    Estimate e{sum / float(n), {}};
+    for (int i = 0; i < N; ++i) e.standard_error[i] = std::sqrt(std::max(0.f, sum_sq[i] / n - sqr(e.mean[i])) / (n - 1));
+    return e;
+  }
+};
+
+// η'² of light going from wi's side to wo's: the factor that turns transmitted radiance into energy.
+float energy_factor(const Case& c, const Vec3f& wo, const Vec3f& wi) {
+  return same_hemisphere(wo, wi) ? 1.f : sqr(wo.z > 0 ? c.eta : 1 / c.eta);
+}
+
+Estimate albedo_own_sampling(const Case& c, const Bsdf<N>& b, const Vec3f& wo, int samples, Rng& rng) {
+  Accumulator acc;
+  for (int i = 0; i < samples; ++i) {
+    const float uc = rng.uniform();
+    const Vec2f u(rng.uniform(), rng.uniform());
+    const auto s = bsdf_sample_f(b, wo, uc, u);
+    acc.add(s && s->pdf > 0 ? s->f * (abs_cos_theta(s->wi) / s->pdf * energy_factor(c, wo, s->wi))
+                            : SampledSpectrum<N>(0.f));
+  }
+  return acc.result();
+}
+
+Estimate albedo_uniform_sampling(const Case& c, const Bsdf<N>& b, const Vec3f& wo, int samples, Rng& rng) {
+  Accumulator acc;
+  for (int i = 0; i < samples; ++i) {
+    const Vec3f wi = sample_uniform_sphere({rng.uniform(), rng.uniform()});
+    acc.add(bsdf_f(b, wo, wi) * (abs_cos_theta(wi) / uniform_sphere_pdf() * energy_factor(c, wo, wi)));
+  }
+  return acc.result();
+}
+
+const float kCosines[] = {1.f, 0.7f, 0.3f, 0.05f, -0.6f};
+
+}  // namespace
+
+TEST_CASE("every BSDF conserves energy: albedo <= 1 by its own and by uniform sampling, and = 1 when lossless") {
+  Rng rng(17, 0);
+  for (const Case& c : cases()) {
+    const Bsdf<N> b = c.make();
+    const bool has_delta = bsdf_delta_lobes(b, Vec3f(0.3f, 0, std::sqrt(1 - 0.09f))).count > 0;
+    for (float cos_o : kCosines) {
+      const Vec3f wo(std::sqrt(1 - cos_o * cos_o), 0, cos_o);
+      const Estimate own = albedo_own_sampling(c, b, wo, 40000, rng);
+      for (int i = 0; i < N; ++i) {
+        INFO(c.name << ", cos θo " << cos_o << ", lane " << i << ": albedo " << own.mean[i] << " ± " << own.standard_error[i]);
+        REQUIRE(std::isfinite(own.mean[i]));
+        CHECK(own.mean[i] <= 1 + 4 * own.standard_error[i] + 1e-6f);
+        if (c.lossless) CHECK(own.mean[i] == Approx(1).margin(4 * own.standard_error[i] + 1e-5));
+      }
+      if (has_delta || c.sharp) continue;  // uniform directions (almost) never meet such lobes
+      const Estimate uni = albedo_uniform_sampling(c, b, wo, 40000, rng);
+      for (int i = 0; i < N; ++i) {
+        INFO(c.name << ", cos θo " << cos_o << ", lane " << i << ": own " << own.mean[i] << " ± " << own.standard_error[i]
+                    << ", uniform " << uni.mean[i] << " ± " << uni.standard_error[i]);
+        const float se = std::sqrt(sqr(own.standard_error[i]) + sqr(uni.standard_error[i]));
+        CHECK(uni.mean[i] <= 1 + 4 * uni.standard_error[i] + 1e-6f);
+        CHECK(own.mean[i] == Approx(uni.mean[i]).margin(4 * se + 1e-6));
+      }
+    }
+  }
+}
+
+TEST_CASE("every sampled BSDF lobe follows its pdf (chi-square)") {
+  // Reflected and transmitted directions are tested apart, each hemisphere's cells centred on
+  // its own peak.
+  for (const Case& c : cases()) {
+    const Bsdf<N> b = c.make();
+    if (bsdf_is_specular(b)) continue;
+    for (float cos_o : {0.9f, 0.4f, -0.7f})
+      for (const bool reflected : {true, false}) {
+        const Vec3f wo(std::sqrt(1 - cos_o * cos_o), 0, cos_o);
+        const auto in_part = [&](const Vec3f& wi) { return same_hemisphere(wo, wi) == reflected; };
+        const auto result = test::chi2_test(
+            [&](float u1, float u2, float u3) -> std::optional<Vec3f> {
+              const auto s = bsdf_sample_f(b, wo, u1, {u2, u3});
+              if (!s || s->specular || !in_part(s->wi)) return std::nullopt;  // delta samples carry no density
+              return s->wi;
+            },
+            [&](const Vec3f& wi) { return in_part(wi) ? double(bsdf_pdf(b, wo, wi)) : 0.0; });
+        INFO(c.name << ", cos θo " << cos_o << (reflected ? ", reflection" : ", transmission") << ": χ² "
+                    << result.statistic << ", dof " << result.degrees_of_freedom << ", p " << result.p_value);
+        CHECK(result.passed);
+      }
+  }
+}
+
+TEST_CASE("the glTF base is energy-consistent: a white plastic reflects everything it does not transmit") {
+  // ρ = 1 under a specular layer: albedo = E_spec(μ) + (1 − E(μ)) · 1 = 1 up to the tabulated E.
+  Rng rng(23, 0);
+  for (float roughness : {0.f, 0.3f, 1.f}) {
+    const Case c{"white plastic", {}, false, 1.5f};
+    const Bsdf<N> b = bsdf_of(PbrMaterial::plastic(Rgb{1, 1, 1}, roughness));
+    for (float cos_o : {1.f, 0.5f, 0.1f}) {
+      const Estimate own = albedo_own_sampling(c, b, Vec3f(std::sqrt(1 - cos_o * cos_o), 0, cos_o), 100000, rng);
+      INFO("roughness " << roughness << ", cos θo " << cos_o << ": albedo " << own.mean[0] << " ± " << own.standard_error[0]);
+      CHECK(own.mean[0] == Approx(1).margin(4 * own.standard_error[0] + 5e-3));
+    }
+  }
+}
