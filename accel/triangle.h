@@ -5,6 +5,7 @@
 // functions of a shared edge are computed identically for both triangles. Rays through an edge
 // or vertex therefore hit at least one of the triangles sharing it; none slip through.
 
+#include <algorithm>
 #include <cmath>
 
 #include "base/ray.h"
@@ -62,7 +63,18 @@ inline bool intersect_triangle(const WatertightRay& r, const Vec3f& v0, const Ve
 
   const float inv_det = 1.f / det;
   hit = {t_scaled * inv_det, u * inv_det, v * inv_det, w * inv_det};
-  return hit.t > 0.f && hit.t < tmax;
+
+  // t must exceed its own rounding error bound δt, or a ray leaving a surface point could hit
+  // that surface again at a tiny t (pbrt-v4 §6.8.4, from the error of each step above).
+  const float max_z = std::max({std::abs(az), std::abs(bz), std::abs(cz)});
+  const float max_x = std::max({std::abs(ax), std::abs(bx), std::abs(cx)});
+  const float max_y = std::max({std::abs(ay), std::abs(by), std::abs(cy)});
+  const float delta_z = gamma(3) * max_z;
+  const float delta_x = gamma(5) * (max_x + max_z), delta_y = gamma(5) * (max_y + max_z);
+  const float delta_e = 2 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
+  const float max_e = std::max({std::abs(u), std::abs(v), std::abs(w)});
+  const float delta_t = 3 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * std::abs(inv_det);
+  return hit.t > delta_t && hit.t < tmax;
 }
 
 }  // namespace prism

@@ -147,3 +147,21 @@ TEST_CASE("degenerate triangles are never hit, and empty scenes miss") {
   CHECK_FALSE(empty.intersect({{0, 0, 0}, {0, 0, 1}, kInfinity}, hit));
   CHECK_FALSE(empty.occluded({{0, 0, 0}, {0, 0, 1}, kInfinity}));
 }
+
+TEST_CASE("a ray leaving a surface point never re-hits that surface (conservative t)") {
+  // Points exactly on an axis-aligned plane have no rounding error to offset by, so the
+  // triangle test itself must reject the t ≈ 0 self-hit at any direction, grazing ones included.
+  const std::vector<Vec3f> p = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  const std::vector<uint32_t> idx = {0, 1, 2, 0, 2, 3};
+  const AccelMesh mesh{p, idx};
+  const AccelInstance instance{0, Transform{}};
+  const Accel accel({&mesh, 1}, {&instance, 1});
+  Rng rng(21, 0);
+  for (int i = 0; i < 100000; ++i) {
+    const Vec3f o(rng.uniform() * 1.8f - 0.9f, rng.uniform() * 1.8f - 0.9f, 0.f);
+    Vec3f d = sample_uniform_hemisphere({rng.uniform(), rng.uniform()});
+    if (i % 2) d.z = std::min(d.z, 1e-3f);  // many grazing directions
+    AccelHit hit;
+    REQUIRE_FALSE(accel.intersect({o, normalize(d), kInfinity}, hit));
+  }
+}
