@@ -1,0 +1,103 @@
+// Surface features in renders: alpha MASK and BLEND, textures seen through the camera, vertex
+// colours, normal maps that never leak light below the geometric surface.
+
+#include <catch2/catch.hpp>
+
+#include "support/test_scenes.h"
+
+using namespace prism;
+
+namespace {
+
+// A 2×1 texture: left texel (r,g,b,a0), right texel (r,g,b,a1).
+Texture two_texels(std::array<uint8_t, 4> left, std::array<uint8_t, 4> right) {
+  Texture t;
+  std::vector<uint8_t> rgba(left.begin(), left.end());
+  rgba.insert(rgba.end(), right.begin(), right.end());
+  t.image = std::make_shared<Image>(2, 1, std::move(rgba));
+  t.nearest = true;
+  return t;
+}
+
+// A quad facing the camera, filling the image, in front of a uniform sky of radiance 1.
+Scene quad_before_sky(Material m) {
+  Scene scene;
+  scene.materials.push_back(std::move(m));
+  Mesh quad = test::make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 0);
+  quad.uv[0] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+  test::add_mesh(scene, std::move(quad));
+  scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
+  return scene;
+}
+
+// A black surface: no diffuse, no specular reflection.
+PbrMaterial black() {
+  PbrMaterial p = PbrMaterial::plastic(Rgb{0, 0, 0}, 1);
+  p.specular = 0;
+  return p;
+}
+
+const CameraDesc kCamera = test::look_at({0, 0, 2}, {0, 0, 0}, 40.f);  // the quad fills the view
+
+}  // namespace
+
+TEST_CASE("alpha MASK cuts surfaces away where the texture's alpha is below the cutoff") {
+  PbrMaterial p = black();
+  p.base_color_texture = two_texels({255, 255, 255, 0}, {255, 255, 255, 255});
+  Material m{"mask", p, {}, false};
+  m.alpha_mode = AlphaMode::mask;
+  const auto img = test::render_rgb(quad_before_sky(m), kCamera, 16, 16, 16);
+  CHECK(img.stats.invalid_samples == 0);
+  for (int c = 0; c < 3; ++c) {
+    CHECK(img.mean(c, 0, 0, 7, 16) == Approx(1).margin(0.02));  // cut away: the sky shows
+    CHECK(img.mean(c, 9, 0, 16, 16) == Approx(0).margin(1e-6));  // kept: black
+  }
+  // Opaque mode ignores alpha.
+  m.alpha_mode = AlphaMode::opaque;
+  const auto opaque = test::render_rgb(quad_before_sky(m), kCamera, 16, 16, 4);
+  for (int c = 0; c < 3; ++c) CHECK(opaque.mean(c) == Approx(0).margin(1e-6));
+}
+
+TEST_CASE("alpha BLEND lets the sky through in proportion to 1 - alpha") {
+  PbrMaterial p = black();
+  p.alpha = 0.3f;
+  Material m{"blend", p, {}, false};
+  m.alpha_mode = AlphaMode::blend;
+  const auto img = test::render_rgb(quad_before_sky(m), kCamera, 16, 16, 1024);
+  test::check_mean(img, 0, 0, 16, 16, 0.7, 0.02);
+}
+
+TEST_CASE("a textured, vertex-coloured diffuse surface shows texture x factor x vertex colour") {
+  PbrMaterial p = PbrMaterial::plastic(Rgb{1, 0.5f, 1}, 1);
+  p.specular = 0;  // pure Lambert, so the answer is the albedo
+  p.base_color_texture = two_texels({255, 255, 255, 255}, {128, 128, 128, 255});
+  Scene scene = quad_before_sky(Material{"tex", p, {}, false});
+  scene.meshes[0].colors.assign(4, {1, 1, 0.5f, 1});
+  // Lit by the sky alone from the front; a closed box is not needed: E = π (uniform sky, hemisphere).
+  const auto img = test::render_rgb(scene, kCamera, 16, 16, 256);
+  const float right = srgb_to_linear(128);
+  CHECK(img.mean(0, 0, 0, 7, 16) == Approx(1.0).margin(0.02));
+  CHECK(img.mean(1, 0, 0, 7, 16) == Approx(0.5).margin(0.02));
+  CHECK(img.mean(2, 0, 0, 7, 16) == Approx(0.5).margin(0.02));
+  CHECK(img.mean(0, 9, 0, 16, 16) == Approx(right).margin(0.02));
+  CHECK(img.mean(1, 9, 0, 16, 16) == Approx(0.5 * right).margin(0.02));
+}
+
+TEST_CASE("a normal map tilts the shading normal but never shades below the geometric surface") {
+  // A normal map tilting every normal by 60°: a white Lambert plane under a uniform sky still
+  // reflects at most what it receives, and never NaN.
+  PbrMaterial p = PbrMaterial::plastic(Rgb{1, 1, 1}, 1);
+  p.specular = 0;
+  Material m{"bumpy", p, {}, false};
+  const uint8_t x = uint8_t(std::lround((std::sin(radians(60)) + 1) / 2 * 255));
+  const uint8_t z = uint8_t(std::lround((std::cos(radians(60)) + 1) / 2 * 255));
+  m.normal_texture = two_texels({x, 128, z, 255}, {x, 128, z, 255});
+  Scene scene = quad_before_sky(m);
+  generate_tangents(scene.meshes[0], 0);
+  const auto img = test::render_rgb(scene, kCamera, 16, 16, 256);
+  CHECK(img.stats.invalid_samples == 0);
+  for (int c = 0; c < 3; ++c) {
+    CHECK(img.mean(c) <= 1.0 + 0.02);
+    CHECK(img.mean(c) > 0.3);
+  }
+}
