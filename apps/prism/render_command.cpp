@@ -84,7 +84,8 @@ void run(const RenderArgs& args) {
   log::info("scene features: {}", world.features().to_string());
   log::info("built the BVH over {} triangles in {:.0f} ms ({:.1f} MB)", world.accel().triangle_count(),
             1e3 * seconds_since(t0), world.accel().memory_bytes() / 1e6);
-  if (world.lights().empty()) log::warn("{}: the scene has no lights; the image will be black", args.scene);
+  if (world.lights().empty())
+    log::warn("{}: the scene has no lights (the image will be black); light it with --env R,G,B", args.scene);
 
   log::info("rendering {}x{} at {} spp, {} wavelengths per path", size.x, size.y, args.options.spp,
             args.options.wavelengths);

@@ -8,7 +8,9 @@
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 
+#include "base/log.h"
 #include "render/image_output.h"
+#include "scene/gltf_loader.h"
 #include "support/test_scenes.h"
 
 using namespace prism;
@@ -54,4 +56,25 @@ TEST_CASE("the output colour space sets the pixel values and the chromaticities 
   Imf::InputFile in(exr.c_str());
   CHECK(Imf::chromaticities(in.header()).red.x == Approx(0.713f).margin(1e-4));
   CHECK(Imf::chromaticities(in.header()).white.x == Approx(0.32168f).margin(1e-4));
+}
+
+TEST_CASE("every shared glTF asset renders at low spp with zero invalid samples", "[shared]") {
+  if (!test::shared_assets_present()) {
+    WARN("../shared is absent: skipping");
+    return;
+  }
+  log::set_level(log::Level::quiet);
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(test::shared_dir() / "assets" / "gltf")) {
+    const auto ext = entry.path().extension();
+    if (ext != ".gltf" && ext != ".glb") continue;
+    INFO(entry.path().string());
+    Scene scene = load_gltf(entry.path());
+    scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});  // light every surface, even in unlit assets
+    const CameraDesc camera = scene.cameras.empty() ? framing_camera(scene.world_bounds(), 1.f) : scene.cameras[0];
+    const auto img = test::render_rgb(scene, camera, 24, 24, 2, 8);
+    CHECK(img.stats.invalid_samples == 0);
+    for (float v : img.rgb) REQUIRE(std::isfinite(v));
+    CHECK(img.mean(1) > 0);
+  }
+  log::set_level(log::Level::info);
 }
