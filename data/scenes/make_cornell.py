@@ -20,7 +20,7 @@ the published quads (ceiling without the light hole); the light sits 0.1 mm
 below the ceiling. The RGB albedos are the widely used linear Rec.709
 approximations of the measured spectral reflectances, not the measured data.
 
-Standard library only. To add an object, append one line to OBJECTS, e.g.
+Standard library only (helpers in gltf_builder.py). To add an object, append one line to OBJECTS, e.g.
     ("copper_sphere", uv_sphere((0.40, 0.10, 0.15), 0.10, 64), metal("copper", (0.95, 0.64, 0.54), 0.1)),
 """
 import base64
@@ -30,144 +30,11 @@ import os
 import struct
 import sys
 
+from gltf_builder import (add, box, build_gltf, cross, diffuse, dot, emitter, glass, mean, metal, normalize,
+                          prism, quad, scale, sub, uv_sphere, write_gltf)
+
 MM = 0.001  # published data is in millimetres
-
-# ---------------------------------------------------------------- vectors
-def add(a, b): return tuple(x + y for x, y in zip(a, b))
-def sub(a, b): return tuple(x - y for x, y in zip(a, b))
-def scale(a, s): return tuple(x * s for x in a)
-def dot(a, b): return sum(x * y for x, y in zip(a, b))
-def cross(a, b): return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-def normalize(a): return scale(a, 1.0 / math.sqrt(dot(a, a)))
-def mean(pts): return scale(tuple(map(sum, zip(*pts))), 1.0 / len(pts))
 def mm(*pts): return [scale(p, MM) for p in pts]
-def rot_y(p, deg):
-    c, s = math.cos(math.radians(deg)), math.sin(math.radians(deg))
-    return (c * p[0] + s * p[2], p[1], -s * p[0] + c * p[2])
-
-# ---------------------------------------------------------------- meshes
-# A mesh is a dict of parallel lists: positions, normals (tuples) and indices.
-def merge(*meshes):
-    out = {"positions": [], "normals": [], "indices": []}
-    for m in meshes:
-        base = len(out["positions"])
-        out["positions"] += m["positions"]
-        out["normals"] += m["normals"]
-        out["indices"] += [base + i for i in m["indices"]]
-    return out
-
-def polygon(*pts):
-    """Flat convex polygon, vertices counter-clockwise seen from the front
-    (normal) side; fan-triangulated. A non-planar quad (the published left
-    wall is slightly twisted) gets one flat normal per triangle instead."""
-    n = normalize(tuple(sum(c) for c in zip(*(cross(pts[i], pts[(i + 1) % len(pts)])
-                                               for i in range(len(pts))))))  # Newell
-    if all(abs(dot(n, sub(p, pts[0]))) < 1e-9 for p in pts):
-        return {"positions": list(pts), "normals": [n] * len(pts),
-                "indices": [j for i in range(1, len(pts) - 1) for j in (0, i, i + 1)]}
-    tris = [(pts[0], pts[i], pts[i + 1]) for i in range(1, len(pts) - 1)]
-    return merge(*(polygon(*t) for t in tris))
-
-def quad(a, b, c, d):
-    return polygon(a, b, c, d)
-
-def convex_solid(faces):
-    """Closed (or bottomless) convex solid from polygons given in any winding;
-    each face is turned to face away from the solid's centroid."""
-    centre = mean([p for f in faces for p in f])
-    out = []
-    for f in faces:
-        f = list(f)
-        if dot(cross(sub(f[1], f[0]), sub(f[2], f[0])), sub(mean(f), centre)) < 0:
-            f.reverse()
-        out.append(polygon(*f))
-    return merge(*out)
-
-def box(faces):
-    """Box from 5 or 6 explicit quads (e.g. the published block vertex lists)."""
-    assert len(faces) in (5, 6) and all(len(f) == 4 for f in faces)
-    return convex_solid(faces)
-
-def cuboid(centre, size, yaw_deg=0.0):
-    """Axis-aligned box (size = full extents), rotated yaw_deg about +y."""
-    h = scale(size, 0.5)
-    corner = lambda sx, sy, sz: add(centre, rot_y((sx * h[0], sy * h[1], sz * h[2]), yaw_deg))
-    # each face: fix coordinate `axis` to `side`, walk the other two around the square
-    faces = []
-    for axis in range(3):
-        u, v = [k for k in range(3) if k != axis]
-        for side in (-1, 1):
-            face = []
-            for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
-                s = [0, 0, 0]
-                s[axis], s[u], s[v] = side, a, b
-                face.append(corner(*s))
-            faces.append(face)
-    return box(faces)
-
-def uv_sphere(centre, radius, segments):
-    """UV sphere with `segments` longitudes and segments//2 latitudes. Smooth
-    (radial) normals, since it approximates a curved surface."""
-    rings = max(2, segments // 2)
-    pos, nrm, idx = [], [], []
-    for i in range(rings + 1):
-        th = math.pi * i / rings
-        for j in range(segments + 1):
-            ph = 2.0 * math.pi * j / segments
-            n = (math.sin(th) * math.cos(ph), math.cos(th), math.sin(th) * math.sin(ph))
-            pos.append(add(centre, scale(n, radius)))
-            nrm.append(n)
-    at = lambda i, j: i * (segments + 1) + j
-    for i in range(rings):
-        for j in range(segments):
-            a, b, c, d = at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)
-            if i > 0:
-                idx += [a, b, c]          # skip degenerate triangles at the poles
-            if i < rings - 1:
-                idx += [a, c, d]
-    return {"positions": pos, "normals": nrm, "indices": idx}
-
-def prism(base_centre, side, length, yaw_deg=0.0):
-    """Equilateral triangular prism lying on one rectangular face: triangle of
-    edge `side` in the local xy plane, extruded `length` along local z, then
-    rotated yaw_deg about +y. base_centre is the centre of the bottom face."""
-    tri = [(-side / 2, 0.0), (side / 2, 0.0), (0.0, side * math.sqrt(3.0) / 2)]
-    end = lambda z: [add(base_centre, rot_y((x, y, z), yaw_deg)) for x, y in tri]
-    f, b = end(-length / 2), end(length / 2)
-    sides = [[f[i], f[(i + 1) % 3], b[(i + 1) % 3], b[i]] for i in range(3)]
-    return convex_solid([f, b] + sides)
-
-# ---------------------------------------------------------------- materials
-def diffuse(name, rgb):
-    return {"name": name, "pbrMetallicRoughness": {
-        "baseColorFactor": list(rgb) + [1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}}
-
-def emitter(name, rgb, strength, base_rgb):
-    m = diffuse(name, base_rgb)
-    m["emissiveFactor"] = list(rgb)
-    m["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": strength}}
-    return m
-
-def metal(name, rgb, roughness, catalogue=None):
-    """Metal coloured rgb for any glTF viewer; `catalogue` names Prism's measured n, k table."""
-    m = {"name": name, "pbrMetallicRoughness": {
-        "baseColorFactor": list(rgb) + [1.0], "metallicFactor": 1.0, "roughnessFactor": roughness}}
-    if catalogue:
-        m["extras"] = {"prism": {"metal": catalogue}}
-    return m
-
-def glass(name, ior, abbe, thickness, catalogue=None):
-    """Clear dielectric; KHR_materials_dispersion uses dispersion = 20 / Abbe. `catalogue`
-    names Prism's measured dispersion formula for the same glass."""
-    m = diffuse(name, (1.0, 1.0, 1.0))
-    m["pbrMetallicRoughness"]["roughnessFactor"] = 0.0
-    m["extensions"] = {"KHR_materials_transmission": {"transmissionFactor": 1.0},
-                       "KHR_materials_ior": {"ior": ior},
-                       "KHR_materials_volume": {"thicknessFactor": thickness},
-                       "KHR_materials_dispersion": {"dispersion": 20.0 / abbe}}
-    if catalogue:
-        m["extras"] = {"prism": {"glass": catalogue}}
-    return m
 
 # Linear Rec.709 approximations of the measured Cornell reflectances.
 WHITE = diffuse("white", (0.73, 0.73, 0.73))
@@ -208,58 +75,6 @@ OBJECTS = [
 CAMERA = {"name": "camera", "translation": list(mm((278.0, 273.0, -800.0))[0]),
           "rotation": [0.0, 1.0, 0.0, 0.0],
           "yfov": 2.0 * math.atan(0.0125 / 0.035), "aspectRatio": 1.0, "znear": 0.01}
-
-# ---------------------------------------------------------------- glTF writer
-def f32(v):
-    return struct.unpack("<f", struct.pack("<f", v))[0]
-
-def build_gltf(objects, camera):
-    blob = bytearray()
-    g = {"asset": {"version": "2.0", "generator": "Prism make_cornell.py",
-                   "copyright": "Geometry: Cornell Box Data, Cornell University Program of Computer "
-                                "Graphics (https://www.graphics.cornell.edu/online/box/data.html); "
-                                "scene file: Prism project"},
-         "scene": 0, "scenes": [{"name": "cornell_box", "nodes": []}], "nodes": [], "meshes": [],
-         "materials": [], "cameras": [], "accessors": [], "bufferViews": [], "buffers": []}
-
-    def accessor(data, fmt, ctype, atype, target, bounds=False):
-        flat = [x for item in data for x in (item if isinstance(item, tuple) else (item,))]
-        g["bufferViews"].append({"buffer": 0, "byteOffset": len(blob),
-                                 "byteLength": 4 * len(flat), "target": target})
-        blob.extend(struct.pack("<%d%s" % (len(flat), fmt), *flat))
-        acc = {"bufferView": len(g["bufferViews"]) - 1, "componentType": ctype,
-               "count": len(data), "type": atype}
-        if bounds:
-            acc["min"] = [min(f32(p[k]) for p in data) for k in range(3)]
-            acc["max"] = [max(f32(p[k]) for p in data) for k in range(3)]
-        g["accessors"].append(acc)
-        return len(g["accessors"]) - 1
-
-    mat_index = {}
-    for name, mesh, mat in objects:
-        if mat["name"] not in mat_index:
-            mat_index[mat["name"]] = len(g["materials"])
-            g["materials"].append(mat)
-        assert g["materials"][mat_index[mat["name"]]] == mat, "two materials named " + mat["name"]
-        prim = {"attributes": {
-                    "POSITION": accessor(mesh["positions"], "f", 5126, "VEC3", 34962, bounds=True),
-                    "NORMAL": accessor(mesh["normals"], "f", 5126, "VEC3", 34962)},
-                "indices": accessor(mesh["indices"], "I", 5125, "SCALAR", 34963),
-                "material": mat_index[mat["name"]], "mode": 4}
-        g["meshes"].append({"name": name, "primitives": [prim]})
-        g["nodes"].append({"name": name, "mesh": len(g["meshes"]) - 1})
-
-    g["cameras"].append({"name": camera["name"], "type": "perspective", "perspective": {
-        k: camera[k] for k in ("aspectRatio", "yfov", "znear")}})
-    g["nodes"].append({"name": camera["name"], "camera": 0,
-                       "translation": camera["translation"], "rotation": camera["rotation"]})
-    g["scenes"][0]["nodes"] = list(range(len(g["nodes"])))
-    g["buffers"].append({"byteLength": len(blob), "uri": "data:application/octet-stream;base64,"
-                         + base64.b64encode(bytes(blob)).decode("ascii")})
-    used = sorted({e for m in g["materials"] for e in m.get("extensions", {})})
-    if used:
-        g["extensionsUsed"] = used
-    return g
 
 # ---------------------------------------------------------------- --check
 def check(path):
@@ -313,10 +128,10 @@ def check(path):
 
 def main():
     out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "cornell.gltf")
-    with open(out, "w") as f:
-        json.dump(build_gltf(OBJECTS, CAMERA), f, indent=1)
-        f.write("\n")
-    print("wrote", out)
+    write_gltf(out, build_gltf(OBJECTS, CAMERA, "Prism make_cornell.py",
+                               "Geometry: Cornell Box Data, Cornell University Program of Computer "
+                               "Graphics (https://www.graphics.cornell.edu/online/box/data.html); "
+                               "scene file: Prism project", "cornell_box"))
     if "--check" in sys.argv[1:]:
         check(out)
 

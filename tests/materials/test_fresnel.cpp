@@ -169,3 +169,20 @@ TEST_CASE("dispersion models: KHR_materials_dispersion's Abbe form and Sellmeier
   CHECK(ior(sf11, 450) > ior(sf11, 650));  // normal dispersion: blue bends more
   CHECK(ior(CauchyIor{1.5f, 0.004f}, 500) == Approx(1.5 + 0.004 / 0.25));
 }
+
+TEST_CASE("catalogue materials are finite at the ends of the wavelength range") {
+  for (const auto& e : MaterialCatalogue::standard().entries())
+    for (const float l : {kLambdaMin, kLambdaMax}) {
+      INFO(e.key << " at " << l << " nm");
+      if (e.metal) {
+        const MeasuredMetal m = MaterialCatalogue::standard().metal(e.key);
+        const float R = fresnel_conductor(0.3f, evaluate(m.n, l), evaluate(m.k, l));
+        CHECK(R > 0);
+        CHECK(R < 1);
+      } else {
+        const float n = ior(MaterialCatalogue::standard().dielectric(e.key), l);
+        CHECK(n > 1);
+        CHECK(n < 3);
+      }
+    }
+}

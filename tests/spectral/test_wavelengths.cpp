@@ -3,8 +3,10 @@
 
 #include <catch2/catch.hpp>
 
+#include "base/rng.h"
 #include "spectral/cie.h"
 #include "spectral/wavelengths.h"
+#include "support/chi2.h"
 
 using namespace prism;
 
@@ -74,4 +76,45 @@ TEST_CASE("hero wavelengths are stratified: one per 1/N of the CDF") {
   CHECK(lambda[1] == Approx(sample_visible_wavelengths(0.35f)));
   CHECK(lambda[2] == Approx(sample_visible_wavelengths(0.6f)));
   CHECK(lambda[3] == Approx(sample_visible_wavelengths(0.85f)));
+}
+
+TEST_CASE("visible wavelength sampling follows its pdf (chi-square)") {
+  constexpr int kBins = 94, kSamples = 500000;  // 5-nm bins
+  std::vector<double> observed(kBins, 0);
+  Rng rng(13, 0);
+  for (int i = 0; i < kSamples; ++i) {
+    const float l = sample_visible_wavelengths(rng.uniform());
+    observed[std::min(kBins - 1, int((l - kLambdaMin) / (kLambdaMax - kLambdaMin) * kBins))] += 1;
+  }
+  double statistic = 0;
+  for (int b = 0; b < kBins; ++b) {
+    double p = 0;  // ∫ pdf over the bin, midpoint rule at 0.05 nm
+    const double lo = kLambdaMin + b * 5.0;
+    for (int k = 0; k < 100; ++k) p += visible_wavelengths_pdf(float(lo + (k + 0.5) * 0.05)) * 0.05;
+    const double expected = p * kSamples;
+    statistic += sqr(observed[b] - expected) / expected;
+  }
+  const double p_value = 1 - test::regularized_gamma_p((kBins - 1) / 2.0, statistic / 2);
+  INFO("chi2 " << statistic << " for " << kBins - 1 << " degrees of freedom, p " << p_value);
+  CHECK(p_value > 1e-3);
+}
+
+TEST_CASE("wavelengths at the ends of the range are valid everywhere") {
+  for (const float u : {0.f, 0x1p-24f, 0.5f, 1.f - 0x1p-24f}) {
+    const auto lambda = SampledWavelengths<4>::sample(u);
+    for (int i = 0; i < 4; ++i) {
+      REQUIRE(lambda[i] >= kLambdaMin);
+      REQUIRE(lambda[i] <= kLambdaMax);
+      REQUIRE(lambda.pdf()[i] > 0);
+      REQUIRE(std::isfinite(lambda.pdf()[i]));
+    }
+  }
+  CHECK(sample_visible_wavelengths(0.f) == kLambdaMin);
+  CHECK(sample_visible_wavelengths(1.f) == kLambdaMax);
+  for (const float l : {kLambdaMin, kLambdaMax}) {
+    CHECK(std::isfinite(cie().x(l)));
+    CHECK(cie().d65(l) > 0);
+    CHECK(evaluate(RgbAlbedoSpectrum(Rgb{0.2f, 0.9f, 0.1f}), l) >= 0);
+    CHECK(std::isfinite(evaluate(RgbIlluminantSpectrum(Rgb{5, 1, 0}), l)));
+  }
 }
