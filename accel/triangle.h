@@ -62,7 +62,17 @@ inline bool intersect_triangle(const WatertightRay& r, const Vec3f& v0, const Ve
 
   const float inv_det = 1.f / det;
   hit = {t_scaled * inv_det, u * inv_det, v * inv_det, w * inv_det};
-  return hit.t > 0.f && hit.t < tmax;
+
+  // t must exceed the bound on its own rounding error (pbrt-v4 §6.8.7): a ray spawned on the
+  // triangle's plane (an axis-aligned face at coordinate 0 has a zero error bound there, so no
+  // offset) otherwise re-hits it at t = 0 ± rounding whenever its largest axis is not the normal.
+  const float max_x = max_component(abs(Vec3f(ax, bx, cx))), max_y = max_component(abs(Vec3f(ay, by, cy)));
+  const float max_z = max_component(abs(Vec3f(az, bz, cz)));
+  const float delta_x = gamma(5) * (max_x + max_z), delta_y = gamma(5) * (max_y + max_z), delta_z = gamma(3) * max_z;
+  const float delta_e = 2 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
+  const float max_e = max_component(abs(Vec3f(u, v, w)));
+  const float delta_t = 3 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * std::abs(inv_det);
+  return hit.t > delta_t && hit.t < tmax;
 }
 
 }  // namespace prism

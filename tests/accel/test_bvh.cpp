@@ -147,3 +147,20 @@ TEST_CASE("degenerate triangles are never hit, and empty scenes miss") {
   CHECK_FALSE(empty.intersect({{0, 0, 0}, {0, 0, 1}, kInfinity}, hit));
   CHECK_FALSE(empty.occluded({{0, 0, 0}, {0, 0, 1}, kInfinity}));
 }
+
+TEST_CASE("a ray leaving a triangle's plane from a point on it never hits that triangle") {
+  // A large quad in the plane y = 0: points on it have y = 0 exactly, so their error bound along
+  // the normal is 0 and a spawned ray starts on the plane itself. Leaving at more than 45° from
+  // the normal, the ray's largest axis is not y, and the sheared test computes t = 0 ± rounding.
+  const Vec3f v0(-50, 0, -50), v1(-50, 0, 50), v2(50, 0, 50);
+  Rng rng(7, 0);
+  int hits = 0;
+  for (int i = 0; i < 10000; ++i) {
+    const float b0 = rng.uniform() * 0.5f, b1 = rng.uniform() * 0.5f;
+    const Vec3f p = v0 * b0 + v1 * b1 + v2 * (1 - b0 - b1);
+    const Vec3f w = sample_uniform_hemisphere(Vec2f(rng.uniform() * 0.7f, rng.uniform()));  // about +z
+    TriangleHit h;
+    hits += intersect_triangle(WatertightRay(Ray{p, {w.x, w.z, w.y}, kInfinity}), v0, v1, v2, kInfinity, h);
+  }
+  CHECK(hits == 0);
+}
