@@ -71,9 +71,10 @@ void run(const RenderArgs& args) {
   };
   Scene scene = load_gltf(args.scene);
   if (env) scene.environment = RgbIlluminantSpectrum(*env);
-  log::info("loaded {} in {:.2f} s: {} triangles in {} instances, {} materials, {} point lights", args.scene,
-            seconds_since(t0), scene.triangle_count(), scene.instances.size(), scene.materials.size(),
-            scene.point_lights.size());
+  log::info("loaded {} in {:.2f} s: {} triangles in {} instances, {} materials, {} point, {} spot and {} "
+            "directional lights",
+            args.scene, seconds_since(t0), scene.triangle_count(), scene.instances.size(), scene.materials.size(),
+            scene.point_lights.size(), scene.spot_lights.size(), scene.directional_lights.size());
 
   const CameraDesc camera_desc = choose_camera(scene, args.camera, args);
   const Vec2i size = resolve_resolution(args.width, args.height, camera_desc);

@@ -1,14 +1,14 @@
 #pragma once
-// Light sources as the renderer samples them: emissive triangles (area lights), point lights
-// and a constant environment. Each offers sample_li (a direction towards the light from a
-// point, with its solid-angle pdf and the shadow ray to test) and its emitted power for the
-// light sampler.
+// Light sources as the renderer samples them: emissive triangles (area lights), point, spot and
+// directional lights, and a constant environment. Each offers sample_li (a direction towards
+// the light from a point, with its solid-angle pdf and the shadow ray to test).
 
 #include <optional>
 #include <variant>
 
 #include "base/warp.h"
 #include "render/interaction.h"
+#include "scene/scene.h"
 #include "spectral/spectrum.h"
 
 namespace prism {
@@ -20,7 +20,7 @@ struct LightSampleContext {
 
 template <int N>
 struct LightSample {
-  SampledSpectrum<N> L;  // radiance arriving along wi (for point lights: intensity / distance²)
+  SampledSpectrum<N> L;  // radiance arriving along wi (delta lights: irradiance normal to wi)
   Vec3f wi;
   float pdf;             // solid-angle density; 1 for a delta light
   Ray shadow_ray;
@@ -76,6 +76,49 @@ struct PointLightSource {
   }
 };
 
+// glTF's spot light: intensity I on the axis, scaled by the angular attenuation of
+// KHR_lights_punctual, a = clamp(cos θ · scale + offset, 0, 1)² with
+// scale = 1 / max(1e-3, cos θ_inner − cos θ_outer) and offset = −cos θ_outer · scale.
+struct SpotLightSource {
+  Vec3f position;
+  Vec3f direction;  // unit cone axis
+  const Spectrum* intensity;
+  float scale, offset;
+
+  explicit SpotLightSource(const SpotLight& s)
+      : position(s.position), direction(s.direction), intensity(&s.intensity),
+        scale(1.f / std::max(1e-3f, std::cos(s.inner_angle) - std::cos(s.outer_angle))),
+        offset(-std::cos(s.outer_angle) * scale) {}
+
+  float attenuation(float cos_theta) const { return sqr(clamp(cos_theta * scale + offset, 0.f, 1.f)); }
+
+  template <int N>
+  std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f,
+                                          const SampledWavelengths<N>& lambda) const {
+    Vec3f wi = position - ctx.p;
+    const float d2 = length_squared(wi);
+    if (d2 == 0.f) return std::nullopt;
+    wi = wi / std::sqrt(d2);
+    const float a = attenuation(dot(direction, -wi));
+    if (a == 0.f) return std::nullopt;
+    return LightSample<N>{sample(*intensity, lambda) * (a / d2), wi, 1.f,
+                          spawn_ray_to(ctx.p, ctx.p_error, ctx.n, position, {}, {})};
+  }
+};
+
+// Parallel light from infinitely far: irradiance E on a surface facing it, shadow rays unbounded.
+struct DirectionalLightSource {
+  Vec3f direction;  // unit, the way the light travels
+  const Spectrum* illuminance;
+
+  template <int N>
+  std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f,
+                                          const SampledWavelengths<N>& lambda) const {
+    return LightSample<N>{sample(*illuminance, lambda), -direction, 1.f,
+                          spawn_ray(ctx.p, ctx.p_error, ctx.n, -direction)};
+  }
+};
+
 // Constant radiance from every direction, sampled uniformly over the sphere.
 struct EnvironmentLight {
   const Spectrum* radiance;
@@ -90,9 +133,12 @@ struct EnvironmentLight {
   float pdf_li() const { return uniform_sphere_pdf(); }
 };
 
-using Light = std::variant<AreaLight, PointLightSource, EnvironmentLight>;
+using Light = std::variant<AreaLight, PointLightSource, SpotLightSource, DirectionalLightSource, EnvironmentLight>;
 
-inline bool is_delta(const Light& light) { return std::holds_alternative<PointLightSource>(light); }
+inline bool is_delta(const Light& light) {
+  return std::holds_alternative<PointLightSource>(light) || std::holds_alternative<SpotLightSource>(light) ||
+         std::holds_alternative<DirectionalLightSource>(light);
+}
 
 template <int N>
 std::optional<LightSample<N>> sample_li(const Light& light, const LightSampleContext& ctx, Vec2f u,

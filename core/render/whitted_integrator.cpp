@@ -22,8 +22,8 @@ template <int N>
 SampledSpectrum<N> trace(const Context& c, const Ray& ray, const SampledWavelengths<N>& lambda,
                          const MediumStack& media, int depth, float weight);
 
-// Direct light at a diffuse surface: every point light, and one power-sampled area or
-// environment light sample.
+// Direct light at a diffuse surface: every delta (point, spot, directional) light, and one
+// power-sampled area or environment light sample.
 template <int N>
 SampledSpectrum<N> direct_light(const Context& c, const SurfaceInteraction& si, const Frame& frame,
                                 const Bsdf<N>& bsdf, const Vec3f& wo, const SampledWavelengths<N>& lambda) {

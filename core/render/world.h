@@ -1,6 +1,6 @@
 #pragma once
 // The scene made ready to render: the acceleration structure over its instances, the lights
-// (one AreaLight per emissive triangle, point lights, environment) with their power sampler,
+// (one AreaLight per emissive triangle, punctual lights, environment) with their power sampler,
 // and the surface queries the integrators call.
 
 #include <optional>
@@ -27,7 +27,8 @@ class World {
   const Accel& accel() const { return accel_; }
   const std::vector<Light>& lights() const { return lights_; }
   const PowerLightSampler& light_sampler() const { return light_sampler_; }
-  // Point lights, and a power sampler over the other lights (for Whitted-style direct light).
+  // Delta (point, spot, directional) lights, and a power sampler over the other lights (for
+  // Whitted-style direct light).
   const std::vector<uint32_t>& delta_lights() const { return delta_lights_; }
   const std::vector<uint32_t>& area_lights() const { return area_lights_; }
   const PowerLightSampler& area_light_sampler() const { return area_light_sampler_; }

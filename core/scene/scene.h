@@ -38,12 +38,33 @@ struct CameraDesc {
   float xmag = 1.f, ymag = 1.f;    // orthographic half extents
 };
 
-// Isotropic point source. Intensity: spectral radiant intensity in Prism's units (see README:
-// luminance Y = 1 ↔ 1 cd/m² for radiance, 1 cd for intensity).
+// Punctual lights (KHR_lights_punctual). Units as in the README: luminance Y = 1 ↔ 1 cd/m² for
+// radiance, 1 cd for intensity, 1 lux for illuminance.
+
+// Isotropic point source; intensity is spectral radiant intensity.
 struct PointLight {
   std::string name;
   Vec3f position;
   Spectrum intensity;
+};
+
+// A point source shining into a cone about `direction`, full within the inner cone angle, none
+// beyond the outer one, glTF's smooth falloff between (render/lights.h: SpotLightSource).
+struct SpotLight {
+  std::string name;
+  Vec3f position;
+  Vec3f direction;                    // unit cone axis, the way the light shines
+  float inner_angle = 0.f;            // [radians], 0 ≤ inner ≤ outer ≤ π/2
+  float outer_angle = kPi / 4;
+  Spectrum intensity;                 // on the axis
+};
+
+// Parallel light from a source at infinity; illuminance is the spectral irradiance on a surface
+// facing the light.
+struct DirectionalLight {
+  std::string name;
+  Vec3f direction;                    // unit, the way the light travels
+  Spectrum illuminance;
 };
 
 struct Scene {
@@ -52,6 +73,8 @@ struct Scene {
   std::vector<Instance> instances;
   std::vector<Material> materials;
   std::vector<PointLight> point_lights;
+  std::vector<SpotLight> spot_lights;
+  std::vector<DirectionalLight> directional_lights;
   std::vector<CameraDesc> cameras;     // in scene traversal order
   std::optional<Spectrum> environment; // constant radiance from every direction
 

@@ -14,6 +14,8 @@ SceneFeatures analyze_features(const Scene& scene) {
     if (const auto* c = std::get_if<ConductorMaterial>(&m.kind)) f.measured_metals |= !c->catalogue.empty();
   }
   f.point_lights = !scene.point_lights.empty();
+  f.spot_lights = !scene.spot_lights.empty();
+  f.directional_lights = !scene.directional_lights.empty();
   f.environment = scene.environment.has_value();
   return f;
 }
@@ -27,6 +29,8 @@ std::string SceneFeatures::to_string() const {
   };
   add(emissive_triangles, "emissive_triangles");
   add(point_lights, "point_lights");
+  add(spot_lights, "spot_lights");
+  add(directional_lights, "directional_lights");
   add(environment, "environment");
   add(dispersion, "dispersion");
   add(absorption, "absorption");

@@ -11,6 +11,8 @@ namespace prism {
 struct SceneFeatures {
   bool emissive_triangles = false;
   bool point_lights = false;
+  bool spot_lights = false;
+  bool directional_lights = false;
   bool environment = false;
   bool dispersion = false;       // a dielectric whose index varies with wavelength
   bool absorption = false;       // a closed dielectric volume with Beer–Lambert absorption
