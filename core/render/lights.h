@@ -1,12 +1,14 @@
 #pragma once
 // Light sources as the renderer samples them: emissive triangles (area lights), point, spot and
-// directional lights, and a constant environment. Each offers sample_li (a direction towards
-// the light from a point, with its solid-angle pdf and the shadow ray to test).
+// directional lights, and a constant or image environment. Each offers sample_li (a direction
+// towards the light from a point, with its solid-angle pdf and the shadow ray to test); the
+// environments also give the radiance and pdf of any direction a ray escapes in.
 
 #include <optional>
 #include <variant>
 
 #include "base/warp.h"
+#include "render/environment_map.h"
 #include "render/interaction.h"
 #include "scene/scene.h"
 #include "spectral/spectrum.h"
@@ -130,10 +132,37 @@ struct EnvironmentLight {
     return LightSample<N>{sample(*radiance, lambda), wi, uniform_sphere_pdf(),
                           spawn_ray(ctx.p, ctx.p_error, ctx.n, wi)};
   }
-  float pdf_li() const { return uniform_sphere_pdf(); }
+  template <int N>
+  SampledSpectrum<N> Le(const Vec3f&, const SampledWavelengths<N>& lambda) const {
+    return sample(*radiance, lambda);
+  }
+  float pdf_li(const Vec3f&) const { return uniform_sphere_pdf(); }
 };
 
-using Light = std::variant<AreaLight, PointLightSource, SpotLightSource, DirectionalLightSource, EnvironmentLight>;
+// An environment image, importance-sampled by luminance. Each lookup's RGB becomes an
+// illuminant spectrum as RGB emission does (the upsampling table lookup is cheap).
+struct EnvironmentMapLight {
+  const EnvironmentMap* map;
+
+  template <int N>
+  std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f u,
+                                          const SampledWavelengths<N>& lambda) const {
+    const auto s = map->sample(u);
+    if (!s) return std::nullopt;
+    return LightSample<N>{Le(s->w, lambda), s->w, s->pdf, spawn_ray(ctx.p, ctx.p_error, ctx.n, s->w)};
+  }
+  template <int N>
+  SampledSpectrum<N> Le(const Vec3f& w, const SampledWavelengths<N>& lambda) const {
+    const RgbIlluminantSpectrum L(map->radiance(w));
+    SampledSpectrum<N> r;
+    for (int i = 0; i < N; ++i) r[i] = L(lambda[i]);
+    return r;
+  }
+  float pdf_li(const Vec3f& w) const { return map->pdf(w); }
+};
+
+using Light = std::variant<AreaLight, PointLightSource, SpotLightSource, DirectionalLightSource, EnvironmentLight,
+                           EnvironmentMapLight>;
 
 inline bool is_delta(const Light& light) {
   return std::holds_alternative<PointLightSource>(light) || std::holds_alternative<SpotLightSource>(light) ||
@@ -144,6 +173,18 @@ template <int N>
 std::optional<LightSample<N>> sample_li(const Light& light, const LightSampleContext& ctx, Vec2f u,
                                         const SampledWavelengths<N>& lambda) {
   return std::visit([&](const auto& l) { return l.sample_li(ctx, u, lambda); }, light);
+}
+
+// Radiance arriving along a ray that escaped the scene in direction w, and the solid-angle pdf
+// of sample_li choosing w, for an environment light (either kind).
+template <int N>
+SampledSpectrum<N> environment_Le(const Light& environment, const Vec3f& w, const SampledWavelengths<N>& lambda) {
+  if (const auto* map = std::get_if<EnvironmentMapLight>(&environment)) return map->Le(w, lambda);
+  return std::get<EnvironmentLight>(environment).Le(w, lambda);
+}
+inline float environment_pdf(const Light& environment, const Vec3f& w) {
+  if (const auto* map = std::get_if<EnvironmentMapLight>(&environment)) return map->pdf_li(w);
+  return std::get<EnvironmentLight>(environment).pdf_li(w);
 }
 
 }  // namespace prism

@@ -1,6 +1,7 @@
 #include "render/world.h"
 
 #include "accel/triangle.h"
+#include "base/error.h"
 #include "spectral/cie.h"
 
 namespace prism {
@@ -65,10 +66,18 @@ void World::add_lights() {
     lights_.push_back(DirectionalLightSource{dl.direction, &dl.illuminance});
     powers.push_back(kPi * r * r * spectrum_to_xyz(dl.illuminance).y);
   }
+  if (scene_.environment && scene_.environment_map)
+    fail("a scene has either a constant environment or an environment map, not both");
   if (scene_.environment) {
     environment_light_ = int(lights_.size());
     lights_.push_back(EnvironmentLight{&*scene_.environment});
     powers.push_back(4 * kPi * kPi * r * r * spectrum_to_xyz(*scene_.environment).y);  // π r² · 4π L
+  }
+  if (scene_.environment_map) {
+    environment_map_ = std::make_unique<const EnvironmentMap>(*scene_.environment_map);
+    environment_light_ = int(lights_.size());
+    lights_.push_back(EnvironmentMapLight{environment_map_.get()});
+    powers.push_back(kPi * r * r * environment_map_->luminance_integral());
   }
   light_sampler_ = PowerLightSampler(powers);
   std::vector<float> area_powers;

@@ -3,6 +3,7 @@
 // (one AreaLight per emissive triangle, punctual lights, environment) with their power sampler,
 // and the surface queries the integrators call.
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -38,10 +39,9 @@ class World {
     const int base = instance_light_base_[instance];
     return base < 0 ? -1 : base + int(prim);
   }
+  // The environment (an EnvironmentLight or EnvironmentMapLight; see environment_Le), or null.
   int environment_light() const { return environment_light_; }
-  const EnvironmentLight* environment() const {
-    return environment_light_ < 0 ? nullptr : &std::get<EnvironmentLight>(lights_[environment_light_]);
-  }
+  const Light* environment() const { return environment_light_ < 0 ? nullptr : &lights_[environment_light_]; }
 
  private:
   struct InstanceData {
@@ -61,6 +61,7 @@ class World {
   std::vector<Light> lights_;
   std::vector<int> instance_light_base_;
   int environment_light_ = -1;
+  std::unique_ptr<const EnvironmentMap> environment_map_;
   PowerLightSampler light_sampler_;
   std::vector<uint32_t> delta_lights_, area_lights_;
   PowerLightSampler area_light_sampler_;

@@ -67,6 +67,15 @@ struct DirectionalLight {
   Spectrum illuminance;
 };
 
+// An equirectangular (latitude-longitude) image of linear Rec.709 radiance around the scene;
+// core/render/environment_map.h defines the mapping.
+struct EnvironmentMapDesc {
+  std::string file;
+  RgbImage image;
+  float rotation = 0.f;               // about +Y, right-handed [radians]
+  float scale = 1.f;                  // multiplies every texel
+};
+
 struct Scene {
   std::filesystem::path source;
   std::vector<Mesh> meshes;
@@ -77,6 +86,7 @@ struct Scene {
   std::vector<DirectionalLight> directional_lights;
   std::vector<CameraDesc> cameras;     // in scene traversal order
   std::optional<Spectrum> environment; // constant radiance from every direction
+  std::optional<EnvironmentMapDesc> environment_map;  // at most one of environment, environment_map
 
   Bounds3f world_bounds() const;
   size_t triangle_count() const;       // over all instances

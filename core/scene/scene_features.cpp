@@ -17,6 +17,7 @@ SceneFeatures analyze_features(const Scene& scene) {
   f.spot_lights = !scene.spot_lights.empty();
   f.directional_lights = !scene.directional_lights.empty();
   f.environment = scene.environment.has_value();
+  f.environment_map = scene.environment_map.has_value();
   return f;
 }
 
@@ -32,6 +33,7 @@ std::string SceneFeatures::to_string() const {
   add(spot_lights, "spot_lights");
   add(directional_lights, "directional_lights");
   add(environment, "environment");
+  add(environment_map, "environment_map");
   add(dispersion, "dispersion");
   add(absorption, "absorption");
   add(measured_metals, "measured_metals");
