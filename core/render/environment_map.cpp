@@ -1,6 +1,7 @@
 #include "render/environment_map.h"
 
 #include <algorithm>
+#include <cctype>
 
 #include "base/error.h"
 #include "base/log.h"

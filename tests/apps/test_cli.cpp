@@ -43,11 +43,11 @@ TEST_CASE("prism render --env-map: renders with an image, and refuses bad files 
                   ColorPipeline::standard().chromaticities(ColorPipeline::kDefaultOutput), {}},
             false);
   std::string err;
-  CHECK(test::run_prism(scene + "\"" + out.string() + "\" --env-map \"" + sky.string() +
-                            "\" --env-rotate 90 --env-scale 2 --quiet",
-                        &err) == 0);
-  CHECK(std::filesystem::exists(out));
+  const int code = test::run_prism(
+      scene + "\"" + out.string() + "\" --env-map \"" + sky.string() + "\" --env-rotate 90 --env-scale 2 --quiet", &err);
   INFO(err);
+  CHECK(code == 0);
+  CHECK(std::filesystem::exists(out));
   std::filesystem::remove(out);
 
   // A missing or unreadable map stops before rendering, naming the file.

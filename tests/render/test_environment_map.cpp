@@ -8,8 +8,8 @@
 #include <catch2/catch.hpp>
 
 #include <fstream>
+#include <functional>
 
-#include "base/error.h"
 #include "base/rng.h"
 #include "render/environment_map.h"
 #include "render/image_output.h"
