@@ -1,7 +1,8 @@
 #pragma once
-// A linear RGB triple in some named colour space (glTF colours are linear Rec.709 / sRGB).
+// Linear RGB triples and images in some named colour space (glTF colours are linear Rec.709 / sRGB).
 
 #include <algorithm>
+#include <vector>
 
 namespace prism {
 
@@ -13,6 +14,17 @@ struct Rgb {
   constexpr Rgb operator*(float s) const { return {r * s, g * s, b * s}; }
   constexpr Rgb operator/(float s) const { return {r / s, g / s, b / s}; }
   constexpr bool operator==(const Rgb&) const = default;
+};
+
+// An image of linear RGB triples, interleaved, top row first.
+struct RgbImage {
+  int width = 0, height = 0;
+  std::vector<float> rgb;
+
+  Rgb pixel(int x, int y) const {
+    const float* p = &rgb[(size_t(y) * width + x) * 3];
+    return {p[0], p[1], p[2]};
+  }
 };
 
 // CIE 1931 tristimulus values.

@@ -7,6 +7,7 @@
 #include "apps/prism/commands.h"
 #include "base/error.h"
 #include "base/log.h"
+#include "render/environment_map.h"
 #include "render/image_output.h"
 #include "render/renderer.h"
 #include "scene/gltf_loader.h"
@@ -17,7 +18,8 @@ namespace prism {
 namespace {
 
 struct RenderArgs {
-  std::string scene, output, preview, env, colorspace = ColorPipeline::kDefaultOutput;
+  std::string scene, output, preview, env, env_map, colorspace = ColorPipeline::kDefaultOutput;
+  float env_rotate = 0, env_scale = 1;
   int width = 0, height = 0, camera = -1;
   bool half = false, quiet = false;
   RenderOptions options;
@@ -64,6 +66,11 @@ void run(const RenderArgs& args) {
   std::optional<Rgb> env;
   if (!args.env.empty()) env = parse_rgb(args.env, "--env");
   cie();  // fail early if the data files are missing
+  std::optional<EnvironmentMapDesc> env_map;
+  if (!args.env_map.empty()) {
+    env_map = load_environment_map(args.env_map, args.env_rotate, args.env_scale);
+    log::info("environment map {}: {}x{}", env_map->file, env_map->image.width, env_map->image.height);
+  }
 
   auto t0 = std::chrono::steady_clock::now();
   const auto seconds_since = [](auto t) {
@@ -71,9 +78,11 @@ void run(const RenderArgs& args) {
   };
   Scene scene = load_gltf(args.scene);
   if (env) scene.environment = RgbIlluminantSpectrum(*env);
-  log::info("loaded {} in {:.2f} s: {} triangles in {} instances, {} materials, {} point lights", args.scene,
-            seconds_since(t0), scene.triangle_count(), scene.instances.size(), scene.materials.size(),
-            scene.point_lights.size());
+  scene.environment_map = std::move(env_map);
+  log::info("loaded {} in {:.2f} s: {} triangles in {} instances, {} materials, {} point, {} spot and {} "
+            "directional lights",
+            args.scene, seconds_since(t0), scene.triangle_count(), scene.instances.size(), scene.materials.size(),
+            scene.point_lights.size(), scene.spot_lights.size(), scene.directional_lights.size());
 
   const CameraDesc camera_desc = choose_camera(scene, args.camera, args);
   const Vec2i size = resolve_resolution(args.width, args.height, camera_desc);
@@ -146,7 +155,16 @@ void add_render_command(CLI::App& app) {
       ->default_str("path");
   cmd->add_option("--wavelengths", args->options.wavelengths, "Wavelengths carried per path (1, 4 or 8)")
       ->default_val(kDefaultWavelengths)->check(CLI::IsMember({1, 4, 8}));
-  cmd->add_option("--env", args->env, "Constant environment radiance as linear Rec.709 R,G,B (e.g. 1,1,1)");
+  CLI::Option* env = cmd->add_option("--env", args->env,
+                                     "Constant environment radiance as linear Rec.709 R,G,B (e.g. 1,1,1)");
+  CLI::Option* env_map =
+      cmd->add_option("--env-map", args->env_map,
+                      "Environment image: equirectangular .exr or .hdr of linear Rec.709 radiance, +Y up")
+          ->excludes(env);
+  cmd->add_option("--env-rotate", args->env_rotate, "Rotate the environment image about +Y by DEG degrees")
+      ->needs(env_map);
+  cmd->add_option("--env-scale", args->env_scale, "Multiply the environment image by S")
+      ->needs(env_map)->check(CLI::NonNegativeNumber);
   cmd->add_option("--colorspace", args->colorspace, "Output colour space from data/ocio/config.ocio")
       ->default_val(ColorPipeline::kDefaultOutput);
   cmd->add_option("--camera", args->camera, "Use the N-th camera in scene order (0-based; default: the first)")

@@ -10,6 +10,7 @@
 #include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
+#include <stb_image.h>
 #include <stb_image_write.h>
 #include <unistd.h>
 
@@ -95,6 +96,8 @@ void write_png(const std::filesystem::path& file, int width, int height, const s
 RgbImage read_exr(const std::filesystem::path& file) {
   try {
     Imf::InputFile in(file.c_str());
+    for (const char* name : {"R", "G", "B"})
+      if (!in.header().channels().findChannel(name)) throw std::runtime_error("it has no R, G and B channels");
     const Imath::Box2i dw = in.header().dataWindow();
     RgbImage img;
     img.width = dw.max.x - dw.min.x + 1;
@@ -117,6 +120,18 @@ RgbImage read_exr(const std::filesystem::path& file) {
   } catch (const std::exception& e) {
     fail("{}: cannot read OpenEXR image: {}", file.string(), e.what());
   }
+}
+
+RgbImage read_hdr(const std::filesystem::path& file) {
+  // stbi_loadf would also read an 8-bit image, through an assumed gamma: refuse those.
+  if (!stbi_is_hdr(file.c_str())) fail("{}: not a Radiance HDR (RGBE) image", file.string());
+  RgbImage img;
+  int channels = 0;
+  float* data = stbi_loadf(file.c_str(), &img.width, &img.height, &channels, 3);
+  if (!data) fail("{}: cannot read Radiance HDR image: {}", file.string(), stbi_failure_reason());
+  img.rgb.assign(data, data + size_t(img.width) * img.height * 3);
+  stbi_image_free(data);
+  return img;
 }
 
 }  // namespace prism

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "spectral/color_pipeline.h"
+#include "spectral/rgb.h"
 
 namespace prism {
 
@@ -30,11 +31,9 @@ void write_exr(const std::filesystem::path& file, const ExrImage& image, bool ha
 // rgb holds display-encoded values in [0, 1] (values outside are clamped).
 void write_png(const std::filesystem::path& file, int width, int height, const std::vector<float>& rgb);
 
-// Reads the RGB channels of an OpenEXR file (for tests and convergence references).
-struct RgbImage {
-  int width = 0, height = 0;
-  std::vector<float> rgb;
-};
+// Reads the R, G and B channels of an OpenEXR file (environment maps, tests, references).
 RgbImage read_exr(const std::filesystem::path& file);
+// Reads a Radiance RGBE (.hdr) file as linear floats.
+RgbImage read_hdr(const std::filesystem::path& file);
 
 }  // namespace prism

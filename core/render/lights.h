@@ -1,14 +1,16 @@
 #pragma once
-// Light sources as the renderer samples them: emissive triangles (area lights), point lights
-// and a constant environment. Each offers sample_li (a direction towards the light from a
-// point, with its solid-angle pdf and the shadow ray to test) and its emitted power for the
-// light sampler.
+// Light sources as the renderer samples them: emissive triangles (area lights), point, spot and
+// directional lights, and a constant or image environment. Each offers sample_li (a direction
+// towards the light from a point, with its solid-angle pdf and the shadow ray to test); the
+// environments also give the radiance and pdf of any direction a ray escapes in.
 
 #include <optional>
 #include <variant>
 
 #include "base/warp.h"
+#include "render/environment_map.h"
 #include "render/interaction.h"
+#include "scene/scene.h"
 #include "spectral/spectrum.h"
 
 namespace prism {
@@ -20,7 +22,7 @@ struct LightSampleContext {
 
 template <int N>
 struct LightSample {
-  SampledSpectrum<N> L;  // radiance arriving along wi (for point lights: intensity / distance²)
+  SampledSpectrum<N> L;  // radiance arriving along wi (delta lights: irradiance normal to wi)
   Vec3f wi;
   float pdf;             // solid-angle density; 1 for a delta light
   Ray shadow_ray;
@@ -86,6 +88,49 @@ struct PointLightSource {
   }
 };
 
+// glTF's spot light: intensity I on the axis, scaled by the angular attenuation of
+// KHR_lights_punctual, a = clamp(cos θ · scale + offset, 0, 1)² with
+// scale = 1 / max(1e-3, cos θ_inner − cos θ_outer) and offset = −cos θ_outer · scale.
+struct SpotLightSource {
+  Vec3f position;
+  Vec3f direction;  // unit cone axis
+  const Spectrum* intensity;
+  float scale, offset;
+
+  explicit SpotLightSource(const SpotLight& s)
+      : position(s.position), direction(s.direction), intensity(&s.intensity),
+        scale(1.f / std::max(1e-3f, std::cos(s.inner_angle) - std::cos(s.outer_angle))),
+        offset(-std::cos(s.outer_angle) * scale) {}
+
+  float attenuation(float cos_theta) const { return sqr(clamp(cos_theta * scale + offset, 0.f, 1.f)); }
+
+  template <int N>
+  std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f,
+                                          const SampledWavelengths<N>& lambda) const {
+    Vec3f wi = position - ctx.p;
+    const float d2 = length_squared(wi);
+    if (d2 == 0.f) return std::nullopt;
+    wi = wi / std::sqrt(d2);
+    const float a = attenuation(dot(direction, -wi));
+    if (a == 0.f) return std::nullopt;
+    return LightSample<N>{sample(*intensity, lambda) * (a / d2), wi, 1.f,
+                          spawn_ray_to(ctx.p, ctx.p_error, ctx.n, position, {}, {})};
+  }
+};
+
+// Parallel light from infinitely far: irradiance E on a surface facing it, shadow rays unbounded.
+struct DirectionalLightSource {
+  Vec3f direction;  // unit, the way the light travels
+  const Spectrum* illuminance;
+
+  template <int N>
+  std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f,
+                                          const SampledWavelengths<N>& lambda) const {
+    return LightSample<N>{sample(*illuminance, lambda), -direction, 1.f,
+                          spawn_ray(ctx.p, ctx.p_error, ctx.n, -direction)};
+  }
+};
+
 // Constant radiance from every direction, sampled uniformly over the sphere.
 struct EnvironmentLight {
   const Spectrum* radiance;
@@ -97,17 +142,59 @@ struct EnvironmentLight {
     return LightSample<N>{sample(*radiance, lambda), wi, uniform_sphere_pdf(),
                           spawn_ray(ctx.p, ctx.p_error, ctx.n, wi)};
   }
-  float pdf_li() const { return uniform_sphere_pdf(); }
+  template <int N>
+  SampledSpectrum<N> Le(const Vec3f&, const SampledWavelengths<N>& lambda) const {
+    return sample(*radiance, lambda);
+  }
+  float pdf_li(const Vec3f&) const { return uniform_sphere_pdf(); }
 };
 
-using Light = std::variant<AreaLight, PointLightSource, EnvironmentLight>;
+// An environment image, importance-sampled by luminance. Each lookup's RGB becomes an
+// illuminant spectrum as RGB emission does (the upsampling table lookup is cheap).
+struct EnvironmentMapLight {
+  const EnvironmentMap* map;
 
-inline bool is_delta(const Light& light) { return std::holds_alternative<PointLightSource>(light); }
+  template <int N>
+  std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f u,
+                                          const SampledWavelengths<N>& lambda) const {
+    const auto s = map->sample(u);
+    if (!s) return std::nullopt;
+    return LightSample<N>{Le(s->w, lambda), s->w, s->pdf, spawn_ray(ctx.p, ctx.p_error, ctx.n, s->w)};
+  }
+  template <int N>
+  SampledSpectrum<N> Le(const Vec3f& w, const SampledWavelengths<N>& lambda) const {
+    const RgbIlluminantSpectrum L(map->radiance(w));
+    SampledSpectrum<N> r;
+    for (int i = 0; i < N; ++i) r[i] = L(lambda[i]);
+    return r;
+  }
+  float pdf_li(const Vec3f& w) const { return map->pdf(w); }
+};
+
+using Light = std::variant<AreaLight, PointLightSource, SpotLightSource, DirectionalLightSource, EnvironmentLight,
+                           EnvironmentMapLight>;
+
+inline bool is_delta(const Light& light) {
+  return std::holds_alternative<PointLightSource>(light) || std::holds_alternative<SpotLightSource>(light) ||
+         std::holds_alternative<DirectionalLightSource>(light);
+}
 
 template <int N>
 std::optional<LightSample<N>> sample_li(const Light& light, const LightSampleContext& ctx, Vec2f u,
                                         const SampledWavelengths<N>& lambda) {
   return std::visit([&](const auto& l) { return l.sample_li(ctx, u, lambda); }, light);
+}
+
+// Radiance arriving along a ray that escaped the scene in direction w, and the solid-angle pdf
+// of sample_li choosing w, for an environment light (either kind).
+template <int N>
+SampledSpectrum<N> environment_Le(const Light& environment, const Vec3f& w, const SampledWavelengths<N>& lambda) {
+  if (const auto* map = std::get_if<EnvironmentMapLight>(&environment)) return map->Le(w, lambda);
+  return std::get<EnvironmentLight>(environment).Le(w, lambda);
+}
+inline float environment_pdf(const Light& environment, const Vec3f& w) {
+  if (const auto* map = std::get_if<EnvironmentMapLight>(&environment)) return map->pdf_li(w);
+  return std::get<EnvironmentLight>(environment).pdf_li(w);
 }
 
 }  // namespace prism

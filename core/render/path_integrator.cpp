@@ -55,8 +55,8 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     };
 
     if (!si) {
-      if (const EnvironmentLight* env = world.environment())
-        add_emitted(sample(*env->radiance, lambda), world.environment_light(), env->pdf_li());
+      if (const Light* env = world.environment())
+        add_emitted(environment_Le(*env, ray.d, lambda), world.environment_light(), environment_pdf(*env, ray.d));
       break;
     }
     const Material& material = *si->material;

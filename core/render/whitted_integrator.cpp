@@ -22,8 +22,8 @@ template <int N>
 SampledSpectrum<N> trace(const Context& c, const Ray& ray, const SampledWavelengths<N>& lambda,
                          const MediumStack& media, int depth, float weight);
 
-// Direct light at a diffuse surface: every point light, and one power-sampled area or
-// environment light sample.
+// Direct light at a diffuse surface: every delta (point, spot, directional) light, and one
+// power-sampled sample of the area lights and the environment (constant or image).
 template <int N>
 SampledSpectrum<N> direct_light(const Context& c, const SurfaceInteraction& si, const Frame& frame,
                                 const Bsdf<N>& bsdf, const Vec3f& wo, const SampledWavelengths<N>& lambda) {
@@ -94,8 +94,8 @@ SampledSpectrum<N> trace(const Context& c, const Ray& ray, const SampledWaveleng
   const auto si = c.world.intersect(ray);
   const SampledSpectrum<N> transmittance = media.transmittance(si ? si->t : kInfinity, lambda);
   if (!si) {
-    const EnvironmentLight* env = c.world.environment();
-    return env ? transmittance * sample(*env->radiance, lambda) : SampledSpectrum<N>(0.f);
+    const Light* env = c.world.environment();
+    return env ? transmittance * environment_Le(*env, ray.d, lambda) : SampledSpectrum<N>(0.f);
   }
   return transmittance * shade(c, *si, lambda, media, depth, weight * transmittance.max());
 }

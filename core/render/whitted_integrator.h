@@ -3,9 +3,10 @@
 // for Shaded Display", CACM 23(6)): at a dielectric both the reflected and the refracted ray
 // are traced, weighted by the Fresnel reflectance and transmittance; a metal traces its
 // reflection weighted by its Fresnel reflectance; a diffuse surface takes direct light through
-// shadow rays (every point light, plus one sample of the area lights and environment); misses
-// see the environment. Per wavelength: a dispersive interface splits the path's wavelengths
-// into one trace each. Noise-free for point lights, and a reference for Fresnel scenes.
+// shadow rays (every point, spot and directional light, plus one sample of the area lights and
+// environment); misses see the environment. Per wavelength: a dispersive interface splits the
+// path's wavelengths into one trace each. Noise-free for delta lights, and a reference for
+// Fresnel scenes.
 
 #include "base/sampler.h"
 #include "render/path_integrator.h"

@@ -4,6 +4,7 @@
 
 #include "accel/triangle.h"
 #include "base/rng.h"
+#include "base/error.h"
 #include "spectral/cie.h"
 
 namespace prism {
@@ -67,13 +68,33 @@ void World::add_lights() {
     lights_.push_back(PointLightSource{pl.position, &pl.intensity});
     powers.push_back(4 * kPi * spectrum_to_xyz(pl.intensity).y);  // Φ = 4π I
   }
+  for (const SpotLight& sl : scene_.spot_lights) {
+    lights_.push_back(SpotLightSource(sl));
+    // Φ ≈ 2π (1 − cos θ_mid) I: the smooth falloff taken as a hard cone at the mean of the inner
+    // and outer angles (exact when they are equal).
+    const float cos_mid = std::cos((sl.inner_angle + sl.outer_angle) / 2);
+    powers.push_back(2 * kPi * (1 - cos_mid) * spectrum_to_xyz(sl.intensity).y);
+  }
+  // Infinite lights deliver power π r² × (their irradiance) to a sphere bounding the scene
+  // (pbrt-v4 §12.4 and §12.5.1).
+  const Bounds3f b = accel_.bounds();
+  const float r = b.empty() ? 1.f : 0.5f * length(b.diagonal());
+  for (const DirectionalLight& dl : scene_.directional_lights) {
+    lights_.push_back(DirectionalLightSource{dl.direction, &dl.illuminance});
+    powers.push_back(kPi * r * r * spectrum_to_xyz(dl.illuminance).y);
+  }
+  if (scene_.environment && scene_.environment_map)
+    fail("a scene has either a constant environment or an environment map, not both");
   if (scene_.environment) {
     environment_light_ = int(lights_.size());
     lights_.push_back(EnvironmentLight{&*scene_.environment});
-    // Φ = π r² · 4π · L: the power a sphere bounding the scene receives (pbrt-v4 §12.5.1).
-    const Bounds3f b = accel_.bounds();
-    const float r = b.empty() ? 1.f : 0.5f * length(b.diagonal());
-    powers.push_back(4 * kPi * kPi * r * r * spectrum_to_xyz(*scene_.environment).y);
+    powers.push_back(4 * kPi * kPi * r * r * spectrum_to_xyz(*scene_.environment).y);  // π r² · 4π L
+  }
+  if (scene_.environment_map) {
+    environment_map_ = std::make_unique<const EnvironmentMap>(*scene_.environment_map);
+    environment_light_ = int(lights_.size());
+    lights_.push_back(EnvironmentMapLight{environment_map_.get()});
+    powers.push_back(kPi * r * r * environment_map_->luminance_integral());
   }
   light_sampler_ = PowerLightSampler(powers);
   std::vector<float> area_powers;

@@ -1,8 +1,9 @@
 #pragma once
 // The scene made ready to render: the acceleration structure over its instances, the lights
-// (one AreaLight per emissive triangle, point lights, environment) with their power sampler,
+// (one AreaLight per emissive triangle, punctual lights, environment) with their power sampler,
 // and the surface queries the integrators call.
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -29,7 +30,8 @@ class World {
   const Accel& accel() const { return accel_; }
   const std::vector<Light>& lights() const { return lights_; }
   const PowerLightSampler& light_sampler() const { return light_sampler_; }
-  // Point lights, and a power sampler over the other lights (for Whitted-style direct light).
+  // Delta (point, spot, directional) lights, and a power sampler over the other lights (for
+  // Whitted-style direct light).
   const std::vector<uint32_t>& delta_lights() const { return delta_lights_; }
   const std::vector<uint32_t>& area_lights() const { return area_lights_; }
   const PowerLightSampler& area_light_sampler() const { return area_light_sampler_; }
@@ -39,10 +41,9 @@ class World {
     const int base = instance_light_base_[instance];
     return base < 0 ? -1 : base + int(prim);
   }
+  // The environment (an EnvironmentLight or EnvironmentMapLight; see environment_Le), or null.
   int environment_light() const { return environment_light_; }
-  const EnvironmentLight* environment() const {
-    return environment_light_ < 0 ? nullptr : &std::get<EnvironmentLight>(lights_[environment_light_]);
-  }
+  const Light* environment() const { return environment_light_ < 0 ? nullptr : &lights_[environment_light_]; }
 
  private:
   struct InstanceData {
@@ -66,6 +67,7 @@ class World {
   std::vector<int> instance_light_base_;
   int environment_light_ = -1;
   bool has_alpha_ = false;
+  std::unique_ptr<const EnvironmentMap> environment_map_;
   PowerLightSampler light_sampler_;
   std::vector<uint32_t> delta_lights_, area_lights_;
   PowerLightSampler area_light_sampler_;

@@ -430,11 +430,10 @@ class GltfLoader {
     scene_.cameras.push_back(c);
   }
 
+  // KHR_lights_punctual: intensity in candela (point, spot) or lux (directional), times the
+  // linear colour, upsampled as an illuminant like emission (see the README's units). A spot or
+  // directional light shines down its node's local −Z.
   void add_light(const tinygltf::Light& light, const Transform& world, const std::string& context) {
-    if (light.type != "point") {
-      warn_once(fmt::format("{} lights are not supported yet; ignoring them", light.type));
-      return;
-    }
     Rgb color{1, 1, 1};
     if (!light.color.empty()) {
       if (light.color.size() != 3 || !all_finite(light.color)) fail("{}: light color must be 3 finite numbers", context);
@@ -442,9 +441,25 @@ class GltfLoader {
     }
     if (!std::isfinite(light.intensity) || light.intensity < 0)
       fail("{}: light '{}' has invalid intensity {}", context, light.name, light.intensity);
-    // glTF point light intensity is in candela (KHR_lights_punctual); see PointLight for units.
+    if (light.range > 0) warn_once("light range is ignored: lights fall off with the inverse square of distance");
+    const Spectrum emission = RgbIlluminantSpectrum(color * float(light.intensity));
     const Vec3f position(world.point({0, 0, 0}));
-    scene_.point_lights.push_back({light.name, position, RgbIlluminantSpectrum(color * float(light.intensity))});
+    const Vec3f direction(normalize(world.vector({0, 0, -1})));
+    if (light.type != "point" && !is_finite(direction))
+      fail("{}: light '{}' has a degenerate direction (zero scale?)", context, light.name);
+    if (light.type == "point") {
+      scene_.point_lights.push_back({light.name, position, emission});
+    } else if (light.type == "spot") {
+      const double inner = light.spot.innerConeAngle, outer = light.spot.outerConeAngle;
+      if (!(inner >= 0 && inner <= outer && outer <= kPi / 2 + 1e-6))
+        fail("{}: spot light '{}' needs 0 ≤ innerConeAngle ≤ outerConeAngle ≤ π/2 (got {} and {})", context,
+             light.name, inner, outer);
+      scene_.spot_lights.push_back({light.name, position, direction, float(inner), float(outer), emission});
+    } else if (light.type == "directional") {
+      scene_.directional_lights.push_back({light.name, direction, emission});
+    } else {
+      warn_once(fmt::format("ignoring lights of unknown type '{}'", light.type));
+    }
   }
 
   const tinygltf::Model& model_;

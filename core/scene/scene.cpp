@@ -7,6 +7,7 @@ Bounds3f Scene::world_bounds() const {
   for (const Instance& inst : instances)
     for (const Vec3f& p : meshes[inst.mesh].positions) b.extend(Vec3f(inst.to_world.point(Vec3d(p))));
   for (const PointLight& l : point_lights) b.extend(l.position);
+  for (const SpotLight& l : spot_lights) b.extend(l.position);
   return b;
 }
 

@@ -47,12 +47,42 @@ struct CameraDesc {
   float xmag = 1.f, ymag = 1.f;    // orthographic half extents
 };
 
-// Isotropic point source. Intensity: spectral radiant intensity in Prism's units (see README:
-// luminance Y = 1 ↔ 1 cd/m² for radiance, 1 cd for intensity).
+// Punctual lights (KHR_lights_punctual). Units as in the README: luminance Y = 1 ↔ 1 cd/m² for
+// radiance, 1 cd for intensity, 1 lux for illuminance.
+
+// Isotropic point source; intensity is spectral radiant intensity.
 struct PointLight {
   std::string name;
   Vec3f position;
   Spectrum intensity;
+};
+
+// A point source shining into a cone about `direction`, full within the inner cone angle, none
+// beyond the outer one, glTF's smooth falloff between (render/lights.h: SpotLightSource).
+struct SpotLight {
+  std::string name;
+  Vec3f position;
+  Vec3f direction;                    // unit cone axis, the way the light shines
+  float inner_angle = 0.f;            // [radians], 0 ≤ inner ≤ outer ≤ π/2
+  float outer_angle = kPi / 4;
+  Spectrum intensity;                 // on the axis
+};
+
+// Parallel light from a source at infinity; illuminance is the spectral irradiance on a surface
+// facing the light.
+struct DirectionalLight {
+  std::string name;
+  Vec3f direction;                    // unit, the way the light travels
+  Spectrum illuminance;
+};
+
+// An equirectangular (latitude-longitude) image of linear Rec.709 radiance around the scene;
+// core/render/environment_map.h defines the mapping.
+struct EnvironmentMapDesc {
+  std::string file;
+  RgbImage image;
+  float rotation = 0.f;               // about +Y, right-handed [radians]
+  float scale = 1.f;                  // multiplies every texel
 };
 
 struct Scene {
@@ -61,8 +91,11 @@ struct Scene {
   std::vector<Instance> instances;
   std::vector<Material> materials;
   std::vector<PointLight> point_lights;
+  std::vector<SpotLight> spot_lights;
+  std::vector<DirectionalLight> directional_lights;
   std::vector<CameraDesc> cameras;     // in scene traversal order
   std::optional<Spectrum> environment; // constant radiance from every direction
+  std::optional<EnvironmentMapDesc> environment_map;  // at most one of environment, environment_map
 
   Bounds3f world_bounds() const;
   size_t triangle_count() const;       // over all instances

@@ -14,7 +14,10 @@ SceneFeatures analyze_features(const Scene& scene) {
     if (const auto* p = std::get_if<PbrMaterial>(&m.kind)) f.measured_metals |= p->metal && p->metallic > 0;
   }
   f.point_lights = !scene.point_lights.empty();
+  f.spot_lights = !scene.spot_lights.empty();
+  f.directional_lights = !scene.directional_lights.empty();
   f.environment = scene.environment.has_value();
+  f.environment_map = scene.environment_map.has_value();
   return f;
 }
 
@@ -27,7 +30,10 @@ std::string SceneFeatures::to_string() const {
   };
   add(emissive_triangles, "emissive_triangles");
   add(point_lights, "point_lights");
+  add(spot_lights, "spot_lights");
+  add(directional_lights, "directional_lights");
   add(environment, "environment");
+  add(environment_map, "environment_map");
   add(dispersion, "dispersion");
   add(absorption, "absorption");
   add(measured_metals, "measured_metals");

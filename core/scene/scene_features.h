@@ -11,7 +11,10 @@ namespace prism {
 struct SceneFeatures {
   bool emissive_triangles = false;
   bool point_lights = false;
-  bool environment = false;
+  bool spot_lights = false;
+  bool directional_lights = false;
+  bool environment = false;      // constant radiance
+  bool environment_map = false;  // an equirectangular image
   bool dispersion = false;       // a dielectric whose index varies with wavelength
   bool absorption = false;       // a closed dielectric volume with Beer–Lambert absorption
   bool measured_metals = false;  // a metal with catalogue n, k tables

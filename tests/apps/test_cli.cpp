@@ -2,6 +2,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <fstream>
+
+#include "render/image_output.h"
 #include "support/test_scenes.h"
 
 using namespace prism;
@@ -30,4 +33,43 @@ TEST_CASE("prism fresnel prints metal colours, takes n,k pairs and plots R(lambd
   CHECK(err.find("Unobtainium") != std::string::npos);
   CHECK(err.find("Cu") != std::string::npos);  // the message lists what exists
   CHECK(test::run_prism("fresnel -m Cu --angles 95") == 1);
+}
+
+TEST_CASE("prism render --env-map: renders with an image, and refuses bad files and option mixes") {
+  const auto dir = test::temp_dir("env_cli");
+  const std::string scene = "render \"" PRISM_SOURCE_DIR "/data/scenes/cornell.gltf\" --spp 1 --width 8 --height 8 -o ";
+  const auto sky = dir / "sky.exr", out = dir / "out.exr";
+  write_exr(sky, {4, 2, std::vector<float>(4 * 2 * 3, 0.5f),
+                  ColorPipeline::standard().chromaticities(ColorPipeline::kDefaultOutput), {}},
+            false);
+  std::string err;
+  const int code = test::run_prism(
+      scene + "\"" + out.string() + "\" --env-map \"" + sky.string() + "\" --env-rotate 90 --env-scale 2 --quiet", &err);
+  INFO(err);
+  CHECK(code == 0);
+  CHECK(std::filesystem::exists(out));
+  std::filesystem::remove(out);
+
+  // A missing or unreadable map stops before rendering, naming the file.
+  CHECK(test::run_prism(scene + "\"" + out.string() + "\" --env-map \"" + (dir / "absent.hdr").string() + "\"", &err) ==
+        1);
+  CHECK(err.find("absent.hdr") != std::string::npos);
+  std::ofstream(dir / "junk.hdr") << "not an image";
+  CHECK(test::run_prism(scene + "\"" + out.string() + "\" --env-map \"" + (dir / "junk.hdr").string() + "\"", &err) ==
+        1);
+  CHECK(err.find("junk.hdr") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(out));
+
+  // --env and --env-map exclude each other; rotation and scale need a map (usage errors).
+  const auto usage_error = [&](const std::string& options) {
+    std::string message;
+    const int code = test::run_prism(scene + "\"" + out.string() + "\" " + options, &message);
+    INFO(options << ": " << message);
+    CHECK(code != 0);
+    CHECK(message.find("env") != std::string::npos);
+  };
+  usage_error("--env 1,1,1 --env-map \"" + sky.string() + "\"");
+  usage_error("--env 1,1,1 --env-rotate 2");
+  usage_error("--env-map \"" + sky.string() + "\" --env-scale -1");
+  CHECK_FALSE(std::filesystem::exists(out));
 }

@@ -244,3 +244,74 @@ TEST_CASE("glTF materials map to Prism's optics: transmission, ior, dispersion, 
   CHECK_THROWS_WITH(with_material(R"({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
       "KHR_materials_ior": {"ior": 0.5}}})"), Catch::Contains("ior"));
 }
+
+TEST_CASE("KHR_lights_punctual spot and directional lights load with their cones and node orientation") {
+  const auto dir = test::temp_dir("gltf_lights");
+  // A spot turned from −Z to −Y (−90° about X), a sun turned 45° about Y under a scaled parent,
+  // a spot with the default cone that sets `range` twice, and a rejected cone.
+  const auto gltf = [&](const std::string& cone) {
+    return R"({
+  "asset": {"version": "2.0"},
+  "extensionsUsed": ["KHR_lights_punctual"],
+  "extensions": {"KHR_lights_punctual": {"lights": [
+    {"type": "spot", "intensity": 5, "spot": )" + cone + R"(},
+    {"type": "directional", "intensity": 3, "color": [1, 0.5, 0.25]},
+    {"type": "spot", "intensity": 2, "range": 10, "spot": {}},
+    {"type": "point", "range": 3}
+  ]}},
+  "scene": 0,
+  "scenes": [{"nodes": [0, 1, 3, 4]}],
+  "nodes": [
+    {"translation": [1, 2, 3], "rotation": [-0.70710678, 0, 0, 0.70710678], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+    {"scale": [2, 2, 2], "children": [2]},
+    {"rotation": [0, 0.38268343, 0, 0.92387953], "extensions": {"KHR_lights_punctual": {"light": 1}}},
+    {"extensions": {"KHR_lights_punctual": {"light": 2}}},
+    {"extensions": {"KHR_lights_punctual": {"light": 3}}}
+  ]
+})";
+  };
+  log::set_level(log::Level::quiet);
+  const Scene scene = load_gltf(write(dir, "lights.gltf", gltf(R"({"innerConeAngle": 0.2, "outerConeAngle": 0.6})")));
+  log::set_level(log::Level::info);
+  REQUIRE(scene.spot_lights.size() == 2);
+  const SpotLight& spot = scene.spot_lights[0];
+  CHECK(spot.position.x == Approx(1));
+  CHECK(spot.position.y == Approx(2));
+  CHECK(spot.position.z == Approx(3));
+  CHECK(spot.direction.x == Approx(0).margin(1e-6));
+  CHECK(spot.direction.y == Approx(-1));
+  CHECK(spot.direction.z == Approx(0).margin(1e-6));
+  CHECK(spot.inner_angle == Approx(0.2f));
+  CHECK(spot.outer_angle == Approx(0.6f));
+  CHECK(spectrum_to_xyz(spot.intensity).y == Approx(5).epsilon(0.01));  // candela
+  const SpotLight& default_spot = scene.spot_lights[1];
+  CHECK(default_spot.inner_angle == 0);
+  CHECK(default_spot.outer_angle == Approx(kPi / 4));
+  CHECK(default_spot.direction.z == Approx(-1));
+
+  REQUIRE(scene.directional_lights.size() == 1);
+  const DirectionalLight& sun = scene.directional_lights[0];
+  CHECK(sun.direction.x == Approx(-std::sqrt(0.5)));  // −Z turned 45° about +Y, unit despite the scale
+  CHECK(sun.direction.y == Approx(0).margin(1e-6));
+  CHECK(sun.direction.z == Approx(-std::sqrt(0.5)));
+  // Lux × the colour's luminance (Rec.709: 0.2126 R + 0.7152 G + 0.0722 B).
+  CHECK(spectrum_to_xyz(sun.illuminance).y == Approx(3 * (0.2126 + 0.7152 * 0.5 + 0.0722 * 0.25)).epsilon(0.01));
+  const SceneFeatures f = analyze_features(scene);
+  CHECK(f.spot_lights);
+  CHECK(f.directional_lights);
+  CHECK(f.point_lights);
+
+  CHECK_THROWS_WITH(load_gltf(write(dir, "cone.gltf", gltf(R"({"innerConeAngle": 0.7, "outerConeAngle": 0.6})"))),
+                    Catch::Contains("cone.gltf") && Catch::Contains("innerConeAngle"));
+
+  // `range` is ignored, with one warning per file however many lights set it.
+  std::string err;
+  const auto lights = dir / "lights.gltf";
+  REQUIRE(test::run_prism("render \"" + lights.string() + "\" -o \"" + (dir / "out.exr").string() +
+                              "\" --spp 1 --width 4 --height 4 --quiet",
+                          &err) == 0);
+  size_t count = 0;
+  for (size_t at = err.find("range is ignored"); at != std::string::npos; at = err.find("range is ignored", at + 1))
+    ++count;
+  CHECK(count == 1);
+}
