@@ -1,5 +1,5 @@
 // prism: the command-line front end. Errors in input print one clear message and exit with 1;
-// usage errors exit with 2 (CLI11's codes).
+// usage errors exit with 2.
 
 #include <cstdio>
 
@@ -12,10 +12,12 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   prism::add_render_command(app);
   prism::add_fresnel_command(app);
+  prism::add_converge_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    const int code = app.exit(e);  // prints the message, or the help / version
+    return code == 0 ? 0 : 2;
   } catch (const prism::Error& e) {
     std::fprintf(stderr, "prism: error: %s\n", e.what());
     return 1;

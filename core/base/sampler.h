@@ -1,6 +1,11 @@
 #pragma once
 // Sample generators for Monte Carlo integration. Every (pixel, sample index) pair starts its own
 // deterministic stream, so images do not depend on thread count or tile order.
+//   independent: uniform random numbers (a PCG32 stream per pixel, jumped ahead per sample);
+//   sobol:       the (0,2)-sequence of Sobol's first two dimensions, Owen-scrambled and with
+//                its samples shuffled independently for every requested dimension ("padded"),
+//                so that each 1D or 2D request is stratified over a pixel's samples (Burley
+//                2020, "Practical Hash-based Owen Scrambling", JCGT 9(4)). Best with 2^k spp.
 
 #include <cstdint>
 
@@ -9,24 +14,86 @@
 
 namespace prism {
 
-// Independent uniform random samples (PCG32 stream per pixel, jumped ahead per sample index).
-class IndependentSampler {
+enum class SamplerKind { independent, sobol };
+
+namespace sobol {
+
+constexpr uint32_t reverse_bits(uint32_t v) {
+  v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
+  v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+  v = ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
+  v = ((v >> 8) & 0x00ff00ffu) | ((v & 0x00ff00ffu) << 8);
+  return (v >> 16) | (v << 16);
+}
+
+// A hash in which every bit depends only on itself and lower bits (Laine & Karras 2011).
+constexpr uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) {
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+}
+
+// Owen scrambling of a base-2 fraction (as 32 bits), by hashing its reversed bits.
+constexpr uint32_t nested_uniform_scramble(uint32_t x, uint32_t seed) {
+  return reverse_bits(laine_karras_permutation(reverse_bits(x), seed));
+}
+
+// Sobol's first two dimensions: the van der Corput sequence and the Pascal matrix mod 2.
+constexpr uint32_t dimension0(uint32_t i) { return reverse_bits(i); }
+constexpr uint32_t dimension1(uint32_t i) {
+  uint32_t r = 0;
+  for (uint32_t v = 1u << 31; i; i >>= 1, v ^= v >> 1)
+    if (i & 1) r ^= v;
+  return r;
+}
+
+constexpr float to_unit(uint32_t x) { return float(x >> 8) * 0x1p-24f; }
+
+}  // namespace sobol
+
+class Sampler {
  public:
-  explicit IndependentSampler(uint64_t seed = 0) : seed_(seed) {}
+  explicit Sampler(uint64_t seed = 0, SamplerKind kind = SamplerKind::independent) : seed_(seed), kind_(kind) {}
 
   void start_pixel_sample(Vec2i pixel, int64_t sample_index) {
-    rng_.set_sequence(hash_ints(pixel.x, pixel.y, seed_), 0);
-    rng_.advance(uint64_t(sample_index) * 65536ull);
+    pixel_hash_ = hash_ints(pixel.x, pixel.y, seed_);
+    index_ = uint32_t(sample_index);
+    dimension_ = 0;
+    if (kind_ == SamplerKind::independent) {
+      rng_.set_sequence(pixel_hash_, 0);
+      rng_.advance(uint64_t(sample_index) * 65536ull);
+    }
   }
-  float get_1d() { return rng_.uniform(); }
+
+  float get_1d() {
+    if (kind_ == SamplerKind::independent) return rng_.uniform();
+    const uint64_t h = hash_ints(pixel_hash_, dimension_++);
+    return sobol::to_unit(sobol::nested_uniform_scramble(sobol::dimension0(shuffled(h)), uint32_t(h >> 32)));
+  }
+
   Vec2f get_2d() {
-    const float u = rng_.uniform();
-    return {u, rng_.uniform()};
+    if (kind_ == SamplerKind::independent) {
+      const float u = rng_.uniform();
+      return {u, rng_.uniform()};
+    }
+    const uint64_t h = hash_ints(pixel_hash_, dimension_++);
+    const uint32_t i = shuffled(h), h2 = uint32_t(mix_bits(h));
+    return {sobol::to_unit(sobol::nested_uniform_scramble(sobol::dimension0(i), uint32_t(h >> 32))),
+            sobol::to_unit(sobol::nested_uniform_scramble(sobol::dimension1(i), h2))};
   }
 
  private:
+  // This dimension's own permutation of the pixel's sample indices (padding).
+  uint32_t shuffled(uint64_t h) const { return sobol::nested_uniform_scramble(index_, uint32_t(h)); }
+
   uint64_t seed_;
+  SamplerKind kind_;
   Rng rng_;
+  uint64_t pixel_hash_ = 0;
+  uint32_t index_ = 0, dimension_ = 0;
 };
 
 }  // namespace prism

@@ -11,7 +11,7 @@ namespace {
 template <int N>
 SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& si, const Frame& frame,
                                  const Bsdf<N>& bsdf, const Vec3f& wo, const SampledWavelengths<N>& lambda,
-                                 IndependentSampler& sampler, RayCounters& counters) {
+                                 Sampler& sampler, RayCounters& counters) {
   const float u_light = sampler.get_1d();
   const Vec2f u = sampler.get_2d();
   const PowerLightSampler& ls = world.light_sampler();
@@ -30,7 +30,7 @@ SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& s
 
 template <int N>
 SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths<N>& lambda,
-                                 IndependentSampler& sampler, const PathOptions& options, RayCounters& counters) {
+                                 Sampler& sampler, const PathOptions& options, RayCounters& counters) {
   SampledSpectrum<N> L(0.f), beta(1.f);
   bool specular_bounce = false;
   float bsdf_pdf_prev = 0.f;  // solid-angle pdf of the BSDF sample that made `ray`
@@ -46,7 +46,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     // Light reached without sampling it: full weight after a camera or specular vertex,
     // otherwise the MIS weight of BSDF sampling against light sampling.
     const auto add_emitted = [&](const SampledSpectrum<N>& Le, int light, float light_pdf_solid_angle) {
-      if (depth == 0 || specular_bounce) {
+      if (depth == 0 || specular_bounce || !options.next_event) {
         L += beta * Le;
       } else {
         const float light_pdf = light_sampler.pmf(uint32_t(light)) * light_pdf_solid_angle;
@@ -72,7 +72,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     const Bsdf<N> bsdf = make_bsdf(material, si->at, lambda, media.front_dielectric(material, entering));
     const Frame frame = Frame::from_z(si->ns);
     const Vec3f wo = frame.to_local(si->wo);
-    if (!bsdf_is_specular(bsdf)) L += beta * sample_direct(world, *si, frame, bsdf, wo, lambda, sampler, counters);
+    if (options.next_event && !bsdf_is_specular(bsdf)) L += beta * sample_direct(world, *si, frame, bsdf, wo, lambda, sampler, counters);
 
     const float uc = sampler.get_1d();
     const auto bs = bsdf_sample_f(bsdf, wo, uc, sampler.get_2d());
@@ -100,7 +100,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
 }
 
 #define PRISM_INSTANTIATE(N)                                                                                  \
-  template SampledSpectrum<N> path_radiance<N>(const World&, Ray, SampledWavelengths<N>&, IndependentSampler&, \
+  template SampledSpectrum<N> path_radiance<N>(const World&, Ray, SampledWavelengths<N>&, Sampler&, \
                                                const PathOptions&, RayCounters&);
 PRISM_INSTANTIATE(1)
 PRISM_INSTANTIATE(4)

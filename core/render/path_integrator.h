@@ -12,11 +12,12 @@ namespace prism {
 struct PathOptions {
   int max_depth = 16;            // bounces; 0 shows only what the camera sees emitting
   bool russian_roulette = true;  // off: every path runs to max_depth (for exact checks)
+  bool next_event = true;        // off: BSDF sampling only (lights found by chance; point lights never)
 };
 
 // Radiance arriving along `ray` at the path's wavelengths.
 template <int N>
 SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths<N>& lambda,
-                                 IndependentSampler& sampler, const PathOptions& options, RayCounters& counters);
+                                 Sampler& sampler, const PathOptions& options, RayCounters& counters);
 
 }  // namespace prism

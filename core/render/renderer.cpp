@@ -25,7 +25,7 @@ struct TileStats {
 template <int N>
 void render_tile(const World& world, const Camera& camera, const RenderOptions& options, int x0, int y0,
                  Film& film, TileStats& stats) {
-  IndependentSampler sampler(options.seed);
+  Sampler sampler(options.seed, options.sampler);
   const int x1 = std::min(x0 + kTileSize, camera.width()), y1 = std::min(y0 + kTileSize, camera.height());
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x)

@@ -20,6 +20,7 @@ struct RenderOptions {
   uint64_t seed = 0;
   int threads = 0;                  // 0: all hardware threads
   int wavelengths = kDefaultWavelengths;  // per path: 1, 4 or 8
+  SamplerKind sampler = SamplerKind::independent;
   PathOptions path;
   bool progress = true;
 };

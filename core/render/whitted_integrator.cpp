@@ -13,7 +13,7 @@ constexpr float kMinBranchWeight = 1e-4f;
 
 struct Context {
   const World& world;
-  IndependentSampler& sampler;
+  Sampler& sampler;
   const PathOptions& options;
   RayCounters& counters;
 };
@@ -104,13 +104,13 @@ SampledSpectrum<N> trace(const Context& c, const Ray& ray, const SampledWaveleng
 
 template <int N>
 SampledSpectrum<N> whitted_radiance(const World& world, const Ray& ray, const SampledWavelengths<N>& lambda,
-                                    IndependentSampler& sampler, const PathOptions& options, RayCounters& counters) {
+                                    Sampler& sampler, const PathOptions& options, RayCounters& counters) {
   return trace(Context{world, sampler, options, counters}, ray, lambda, MediumStack{}, 0, 1.f);
 }
 
 #define PRISM_INSTANTIATE(N)                                                                  \
   template SampledSpectrum<N> whitted_radiance<N>(const World&, const Ray&, const SampledWavelengths<N>&, \
-                                                  IndependentSampler&, const PathOptions&, RayCounters&);
+                                                  Sampler&, const PathOptions&, RayCounters&);
 PRISM_INSTANTIATE(1)
 PRISM_INSTANTIATE(4)
 PRISM_INSTANTIATE(8)

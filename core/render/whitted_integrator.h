@@ -17,6 +17,6 @@ namespace prism {
 
 template <int N>
 SampledSpectrum<N> whitted_radiance(const World& world, const Ray& ray, const SampledWavelengths<N>& lambda,
-                                    IndependentSampler& sampler, const PathOptions& options, RayCounters& counters);
+                                    Sampler& sampler, const PathOptions& options, RayCounters& counters);
 
 }  // namespace prism

@@ -5,6 +5,9 @@
 #include <fstream>
 
 #include "render/image_output.h"
+#include <fstream>
+#include <sstream>
+
 #include "support/test_scenes.h"
 
 using namespace prism;
@@ -72,4 +75,30 @@ TEST_CASE("prism render --env-map: renders with an image, and refuses bad files 
   usage_error("--env 1,1,1 --env-rotate 2");
   usage_error("--env-map \"" + sky.string() + "\" --env-scale -1");
   CHECK_FALSE(std::filesystem::exists(out));
+}
+
+TEST_CASE("prism converge writes the error table, the plot and the summary") {
+  const auto dir = test::temp_dir("converge");
+  std::string err;
+  const int code = test::run_prism("converge \"" PRISM_SOURCE_DIR "/data/scenes/cornell.gltf\" --width 16 --height 16 "
+                                   "--max-spp 4 --reference-spp 16 --reference \"" + (dir / "ref.exr").string() +
+                                   "\" --out \"" + dir.string() + "\"", &err);
+  INFO(err);
+  REQUIRE(code == 0);
+  CHECK(std::filesystem::exists(dir / "ref.exr"));
+  CHECK(std::filesystem::file_size(dir / "convergence.png") > 1000);
+  std::ifstream csv(dir / "convergence.csv");
+  std::string line;
+  std::getline(csv, line);
+  CHECK(line == "configuration,spp,seconds,rmse,relative_mse,mean_error");
+  int rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  CHECK(rows == 6 * 3);  // six configurations at 1, 2 and 4 spp
+  std::ifstream md(dir / "summary.md");
+  std::stringstream summary;
+  summary << md.rdbuf();
+  CHECK(summary.str().find("Sobol sampler") != std::string::npos);
+  // A reference of another size is refused.
+  CHECK(test::run_prism("converge \"" PRISM_SOURCE_DIR "/data/scenes/cornell.gltf\" --width 8 --height 8 --max-spp 1 "
+                        "--reference \"" + (dir / "ref.exr").string() + "\" --out \"" + dir.string() + "\"") == 1);
 }

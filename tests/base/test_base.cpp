@@ -4,6 +4,7 @@
 
 #include "base/frame.h"
 #include "base/rng.h"
+#include "base/sampler.h"
 #include "base/transform.h"
 #include "base/warp.h"
 
@@ -39,7 +40,7 @@ TEST_CASE("frames are orthonormal and right-handed") {
   }
 }
 
-TEST_CASE("PCG32 is deterministic, uniform in [0,1) and jumps ahead exactly") {
+TEST_CASE("PCG32 is deterministic, uniform on the unit interval and jumps ahead exactly") {
   Rng a(42, 7), b(42, 7);
   for (int i = 0; i < 100; ++i) REQUIRE(a.next_u32() == b.next_u32());
   Rng c(42, 7), d(42, 7);
@@ -82,4 +83,47 @@ TEST_CASE("uniform triangle barycentrics cover the triangle evenly") {
     if (b.x > 0.5f) ++in_corner;  // the sub-triangle b0 > 1/2 has a quarter of the area
   }
   CHECK(double(in_corner) / n == Approx(0.25).margin(0.01));
+}
+
+TEST_CASE("the Sobol sampler stratifies each dimension over a pixel's samples") {
+  // With 2^k samples, every 1D request hits each of the 2^k strata exactly once, and every 2D
+  // request each of the 2^(k/2) x 2^(k/2) cells (a (0,2)-net), in every dimension and pixel.
+  constexpr int kSpp = 64;
+  for (const Vec2i pixel : {Vec2i{0, 0}, Vec2i{17, 3}}) {
+    Sampler sampler(5, SamplerKind::sobol);
+    std::vector<std::vector<int>> one(6, std::vector<int>(kSpp, 0)), two(6, std::vector<int>(kSpp, 0));
+    for (int s = 0; s < kSpp; ++s) {
+      sampler.start_pixel_sample(pixel, s);
+      for (int d = 0; d < 6; ++d) {
+        const float u = sampler.get_1d();
+        REQUIRE(u >= 0.f);
+        REQUIRE(u < 1.f);
+        ++one[d][int(u * kSpp)];
+        const Vec2f v = sampler.get_2d();
+        ++two[d][int(v.x * 8) * 8 + int(v.y * 8)];
+      }
+    }
+    for (int d = 0; d < 6; ++d)
+      for (int i = 0; i < kSpp; ++i) {
+        INFO("dimension " << d << " stratum " << i);
+        REQUIRE(one[d][i] == 1);
+        REQUIRE(two[d][i] == 1);
+      }
+  }
+  // Different pixels get different (decorrelated) points.
+  Sampler a(5, SamplerKind::sobol), b(5, SamplerKind::sobol);
+  a.start_pixel_sample({0, 0}, 3);
+  b.start_pixel_sample({1, 0}, 3);
+  CHECK(a.get_1d() != b.get_1d());
+}
+
+TEST_CASE("samplers are deterministic per pixel and sample index") {
+  for (const SamplerKind kind : {SamplerKind::independent, SamplerKind::sobol}) {
+    Sampler a(9, kind), b(9, kind);
+    a.start_pixel_sample({4, 5}, 11);
+    a.get_2d();
+    b.start_pixel_sample({4, 5}, 11);
+    b.get_2d();
+    CHECK(a.get_1d() == b.get_1d());
+  }
 }

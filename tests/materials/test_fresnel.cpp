@@ -122,7 +122,7 @@ TEST_CASE("index-matched interface: no reflection, straight through") {
   CHECK(length(t->wt + w) == Approx(0).margin(1e-6));
 }
 
-TEST_CASE("Fresnel equations stay finite and within [0, 1] on extreme inputs") {
+TEST_CASE("Fresnel equations stay finite and between 0 and 1 on extreme inputs") {
   const float cosines[] = {-1, -0.5f, -1e-6f, -0.f, 0, 1e-7f, 1e-6f, 0.5f, 0.999999f, 1};
   const float etas[] = {1e-3f, 0.1f, 0.5f, 0.9999f, 1, 1.0001f, 1.5f, 4, 10, 1e3f};
   const float ks[] = {0, 1e-6f, 1e-3f, 1, 10, 100, 1e3f};

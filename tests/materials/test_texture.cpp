@@ -39,7 +39,7 @@ TEST_CASE("sRGB-encoded texels decode to linear by IEC 61966-2-1") {
   CHECK(srgb_to_linear(10) == Approx(10 / 255.0 / 12.92).epsilon(1e-5));  // the linear segment
 }
 
-TEST_CASE("texture coordinates address texels from the top-left corner; wrap modes") {
+TEST_CASE("texture coordinates address texels from the top-left corner, with each wrap mode") {
   const Texture t = checker();
   CHECK(texel_at(t, {0.1f, 0.1f}) == std::pair{0, 0});
   CHECK(texel_at(t, {0.9f, 0.1f}) == std::pair{3, 0});

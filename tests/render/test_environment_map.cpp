@@ -172,7 +172,7 @@ TEST_CASE("environment map: a bright block of texels gives a plane the irradianc
   }
 }
 
-TEST_CASE("environment map: the image centre lights +X; turned 90 degrees it lights -Z, turned 180 none of +X") {
+TEST_CASE("environment map: the image centre lights +X, turned 90 degrees it lights -Z, turned 180 none of +X") {
   // Texels [28, 36) × [12, 20): φ = 2πu from 157.5° to 202.5° around the centre, θ from 67.5° to
   // 112.5° around the horizon. On a plane facing +X, where ω · x = −sin θ cos φ:
   // E = L ∫ sin² θ dθ · ∫ −cos φ dφ.
@@ -197,7 +197,7 @@ TEST_CASE("environment map: the image centre lights +X; turned 90 degrees it lig
   }
 }
 
-TEST_CASE("environment maps load from .exr and .hdr alike; bad files fail naming the file") {
+TEST_CASE("environment maps load from .exr and .hdr alike, and bad files fail naming the file") {
   const auto dir = test::temp_dir("env_files");
   const int w = 6, h = 3;
   std::vector<float> rgb(w * h * 3);

@@ -56,7 +56,7 @@ TEST_CASE("Beer-Lambert: a slab transmits exp(-sigma_a d) straight on") {
     const World world(scene);
     PathOptions options;
     options.russian_roulette = false;
-    IndependentSampler sampler(1);
+    Sampler sampler(1);
     for (float lambda_nm : {400.f, 550.f, 700.f}) {
       sampler.start_pixel_sample({0, 0}, 0);
       SampledWavelengths<1> lambda = SampledWavelengths<1>::sample((lambda_nm - kLambdaMin) / (kLambdaMax - kLambdaMin),
@@ -73,7 +73,7 @@ TEST_CASE("Beer-Lambert: a slab transmits exp(-sigma_a d) straight on") {
   }
 }
 
-TEST_CASE("a dispersive interface keeps only the hero wavelength; a plain one keeps all") {
+TEST_CASE("a dispersive interface keeps only the hero wavelength, a plain one keeps all") {
   Material flint = glass(MaterialCatalogue::standard().dielectric("N-SF11"));
   Material plain = glass(ConstantIor{1.5f});
   auto lambda = SampledWavelengths<4>::sample(0.3f);

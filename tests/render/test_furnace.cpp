@@ -63,3 +63,19 @@ TEST_CASE("images are identical whatever the thread count") {
   const auto other_seed = test::render_rgb(scene, camera, 40, 30, 4, 16, 8, 2);
   CHECK(one.rgb != other_seed.rgb);
 }
+
+TEST_CASE("furnace: unbiased with the Sobol sampler and with BSDF sampling only") {
+  Scene scene;
+  scene.materials.push_back(test::diffuse({0.5f, 0.5f, 0.5f}));
+  test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 3, 0));
+  scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
+  for (const bool sobol : {true, false}) {
+    RenderOptions options;
+    options.spp = 1024;
+    options.sampler = sobol ? SamplerKind::sobol : SamplerKind::independent;
+    options.path.next_event = !sobol;  // Sobol with NEE+MIS; independent with BSDF sampling only
+    const auto img = test::render_rgb(scene, test::look_at({0, 0, 5.f}, {0, 0, 0}, 12.f), 16, 16, options);
+    INFO((sobol ? "sobol" : "BSDF sampling only"));
+    test::check_mean(img, 0, 0, 16, 16, 0.5, 0.01);
+  }
+}

@@ -57,7 +57,7 @@ TEST_CASE("RGB albedo -> spectrum -> XYZ -> RGB round trip within 0.01") {
   }
 }
 
-TEST_CASE("RGB albedo spectra stay within [0, 1]; grey is exactly flat") {
+TEST_CASE("RGB albedo spectra stay between 0 and 1, and grey is exactly flat") {
   Rng rng(11, 0);
   for (int i = 0; i < 200; ++i) {
     const Spectrum s = RgbAlbedoSpectrum(Rgb{rng.uniform(), rng.uniform(), rng.uniform()});

@@ -124,20 +124,24 @@ void check_mean(const TestRender& img, int x0, int y0, int x1, int y1, double ex
   }
 }
 
+TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, int height, RenderOptions options) {
+  const World world(scene);
+  options.progress = false;
+  RenderResult r = render(world, Camera(camera, width, height), options);
+  ColorPipeline::standard().convert(ColorPipeline::kXyz, ColorPipeline::kDefaultOutput, r.xyz.data(),
+                                    r.xyz.size() / 3);
+  return {r.width, r.height, std::move(r.xyz), r.stats};
+}
+
 TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, int height, int spp, int max_depth,
                       uint64_t seed, int threads, IntegratorKind integrator) {
-  const World world(scene);
   RenderOptions options;
   options.integrator = integrator;
   options.spp = spp;
   options.seed = seed;
   options.threads = threads;
   options.path.max_depth = max_depth;
-  options.progress = false;
-  RenderResult r = render(world, Camera(camera, width, height), options);
-  ColorPipeline::standard().convert(ColorPipeline::kXyz, ColorPipeline::kDefaultOutput, r.xyz.data(),
-                                    r.xyz.size() / 3);
-  return {r.width, r.height, std::move(r.xyz), r.stats};
+  return render_rgb(scene, camera, width, height, options);
 }
 
 std::filesystem::path temp_dir(const std::string& name) {

@@ -1,0 +1,210 @@
+// `prism converge SCENE --reference REF.exr --out DIR`: the error of several rendering
+// configurations against a reference image as their sample budgets double, written as
+// DIR/convergence.csv, DIR/convergence.png (error against seconds, log-log) and DIR/summary.md
+// (the time each configuration needs to reach a stated error).
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "apps/prism/commands.h"
+#include "apps/prism/plot.h"
+#include "apps/prism/scene_setup.h"
+#include "base/error.h"
+#include "base/log.h"
+#include "render/image_output.h"
+
+namespace prism {
+
+namespace {
+
+struct ConvergeArgs {
+  SceneArgs scene;
+  std::string reference, out;
+  int max_spp = 256, reference_spp = 4096, max_depth = 16, threads = 0;
+  uint64_t seed = 0;
+};
+
+struct Configuration {
+  std::string name;
+  RenderOptions options;
+};
+
+// The baseline (path tracing, 4 wavelengths, NEE + MIS, independent samples) and one change
+// of it per question the report answers.
+std::vector<Configuration> configurations(const ConvergeArgs& args) {
+  RenderOptions base;
+  base.path.max_depth = args.max_depth;
+  base.threads = args.threads;
+  base.seed = args.seed;
+  base.progress = false;
+  std::vector<Configuration> c(6, {"", base});
+  c[0].name = "path, 4 wavelengths, NEE+MIS, independent";
+  c[1].name = "1 wavelength per path";
+  c[1].options.wavelengths = 1;
+  c[2].name = "8 wavelengths per path";
+  c[2].options.wavelengths = 8;
+  c[3].name = "BSDF sampling only";
+  c[3].options.path.next_event = false;
+  c[4].name = "Sobol sampler";
+  c[4].options.sampler = SamplerKind::sobol;
+  c[5].name = "whitted";
+  c[5].options.integrator = IntegratorKind::whitted;
+  return c;
+}
+
+struct Errors {
+  double rmse, relative_mse, mean_error;
+};
+
+// Against the reference, over all pixels and channels: root-mean-square error, mean squared
+// error relative to the reference value (with 0.01 added to its square, the usual guard
+// against dark pixels), and the difference of the means (a bias shows as a plateau in it).
+Errors errors(const std::vector<float>& image, const std::vector<float>& reference) {
+  double se = 0, rel = 0, sum = 0, ref_sum = 0;
+  for (size_t i = 0; i < image.size(); ++i) {
+    const double d = double(image[i]) - reference[i];
+    se += d * d;
+    rel += d * d / (double(reference[i]) * reference[i] + 0.01);
+    sum += image[i];
+    ref_sum += reference[i];
+  }
+  const double n = double(image.size());
+  return {std::sqrt(se / n), rel / n, (sum - ref_sum) / n};
+}
+
+std::vector<float> render_rgb(const PreparedScene& p, const RenderOptions& options, RenderStats* stats = nullptr) {
+  RenderResult r = render(*p.world, *p.camera, options);
+  ColorPipeline::standard().convert(ColorPipeline::kXyz, ColorPipeline::kDefaultOutput, r.xyz.data(), r.xyz.size() / 3);
+  if (stats) *stats = r.stats;
+  return r.xyz;
+}
+
+std::vector<float> reference_image(const ConvergeArgs& args, const PreparedScene& p) {
+  const Camera& camera = *p.camera;
+  if (std::filesystem::exists(args.reference)) {
+    RgbImage ref = read_exr(args.reference);
+    if (ref.width != camera.width() || ref.height != camera.height())
+      fail("{}: the reference is {}x{}, the renders {}x{} (set --width/--height to match)", args.reference,
+           ref.width, ref.height, camera.width(), camera.height());
+    log::info("reference {} ({}x{})", args.reference, ref.width, ref.height);
+    return ref.rgb;
+  }
+  RenderOptions options = configurations(args)[0].options;
+  options.spp = args.reference_spp;
+  options.progress = true;
+  options.seed = args.seed + 1;  // independent of the series' noise
+  log::info("rendering the reference {} at {} spp", args.reference, args.reference_spp);
+  RenderStats stats;
+  std::vector<float> rgb = render_rgb(p, options, &stats);
+  write_exr(args.reference,
+            {camera.width(), camera.height(), rgb,
+             ColorPipeline::standard().chromaticities(ColorPipeline::kDefaultOutput),
+             {{"software", std::string("Prism " PRISM_VERSION)}, {"prism.spp", args.reference_spp},
+              {"prism.seconds", stats.seconds}}},
+            false);
+  return rgb;
+}
+
+struct Point {
+  int spp;
+  double seconds;
+  Errors e;
+};
+
+// Seconds to reach an RMSE of `target`, interpolating log(seconds) against log(RMSE) between
+// budgets; nothing if the series never gets there.
+std::optional<double> time_to_reach(const std::vector<Point>& series, double target) {
+  for (size_t i = 0; i < series.size(); ++i) {
+    if (series[i].e.rmse > target) continue;
+    if (i == 0) return series[0].seconds;
+    const Point &a = series[i - 1], &b = series[i];
+    const double t = (std::log(target) - std::log(a.e.rmse)) / (std::log(b.e.rmse) - std::log(a.e.rmse));
+    return std::exp(std::log(a.seconds) + t * (std::log(b.seconds) - std::log(a.seconds)));
+  }
+  return std::nullopt;
+}
+
+void run(const ConvergeArgs& args) {
+  const PreparedScene p = prepare_scene(args.scene);
+  std::filesystem::create_directories(args.out);
+  const std::vector<float> reference = reference_image(args, p);
+  double reference_mean = 0;
+  for (float v : reference) reference_mean += v;
+  reference_mean /= double(reference.size());
+
+  std::ofstream csv(std::filesystem::path(args.out) / "convergence.csv");
+  csv << "configuration,spp,seconds,rmse,relative_mse,mean_error\n";
+  std::vector<std::vector<Point>> series;
+  const auto configs = configurations(args);
+  for (const Configuration& config : configs) {
+    series.emplace_back();
+    for (int spp = 1; spp <= args.max_spp; spp *= 2) {
+      RenderOptions options = config.options;
+      options.spp = spp;
+      RenderStats stats;
+      const Errors e = errors(render_rgb(p, options, &stats), reference);
+      series.back().push_back({spp, stats.seconds, e});
+      csv << '"' << config.name << "\"," << spp << ',' << stats.seconds << ',' << e.rmse << ',' << e.relative_mse << ','
+          << e.mean_error << '\n';
+      log::info("{:<44} {:>5} spp {:>8.3f} s  RMSE {:.5f}  relMSE {:.3e}  mean error {:+.5f}", config.name, spp,
+                stats.seconds, e.rmse, e.relative_mse, e.mean_error);
+    }
+  }
+  csv.close();
+
+  Plot plot{"RMSE against render time", "seconds", "RMSE", true, true, {}};
+  for (size_t c = 0; c < configs.size(); ++c) {
+    PlotSeries s{configs[c].name, {}, {}};
+    for (const Point& pt : series[c]) s.x.push_back(pt.seconds), s.y.push_back(pt.e.rmse);
+    plot.series.push_back(std::move(s));
+  }
+  write_plot_png(std::filesystem::path(args.out) / "convergence.png", plot);
+
+  // The stated error: what the baseline reaches with its largest budget.
+  const double target = series[0].back().e.rmse;
+  std::ofstream md(std::filesystem::path(args.out) / "summary.md");
+  md << "# Convergence: " << std::filesystem::path(args.scene.scene).filename().string() << "\n\n"
+     << "Image " << p.camera->width() << "x" << p.camera->height() << ", reference `" << args.reference << "`"
+     << " (mean " << reference_mean << "), max depth " << args.max_depth << ", budgets 1 to " << args.max_spp
+     << " spp. Error: RMSE over all pixels and channels (linear Rec.709).\n\n"
+     << "Stated error: RMSE " << target << " (the baseline at " << args.max_spp << " spp).\n\n"
+     << "| configuration | seconds to reach it | speed-up over the baseline | RMSE at " << args.max_spp
+     << " spp | mean error at " << args.max_spp << " spp |\n|---|---|---|---|---|\n";
+  const auto baseline_time = time_to_reach(series[0], target);
+  for (size_t c = 0; c < configs.size(); ++c) {
+    const auto t = time_to_reach(series[c], target);
+    const Point& last = series[c].back();
+    md << "| " << configs[c].name << " | " << (t ? fmt::format("{:.3g}", *t) : std::string("not reached")) << " | "
+       << (t && baseline_time ? fmt::format("{:.2f}x", *baseline_time / *t) : std::string("-")) << " | "
+       << fmt::format("{:.4g}", last.e.rmse) << " | " << fmt::format("{:+.3g}", last.e.mean_error) << " |\n";
+  }
+  md << "\nA configuration that never reaches the stated error, or whose mean error stays away from 0 as its budget "
+        "grows, is biased for this scene (the Whitted tracer omits indirect diffuse light).\n";
+  md.close();
+  std::printf("wrote %s/convergence.csv, convergence.png, summary.md\n", args.out.c_str());
+}
+
+}  // namespace
+
+void add_converge_command(CLI::App& app) {
+  auto args = std::make_shared<ConvergeArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "converge", "Error against render time of several configurations, against a reference image");
+  add_scene_options(cmd, args->scene);
+  cmd->add_option("--reference", args->reference,
+                  "Reference OpenEXR (linear Rec.709, same size); rendered at --reference-spp and written if absent")
+      ->required();
+  cmd->add_option("--out", args->out, "Folder for convergence.csv, convergence.png and summary.md")->required();
+  cmd->add_option("--max-spp", args->max_spp, "Largest sample budget (budgets double from 1)")
+      ->default_val(256)->check(CLI::PositiveNumber);
+  cmd->add_option("--reference-spp", args->reference_spp, "Samples per pixel of a reference this command renders")
+      ->default_val(4096)->check(CLI::PositiveNumber);
+  cmd->add_option("--max-depth", args->max_depth, "Maximum path length in bounces")
+      ->default_val(16)->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")->default_val(0);
+  cmd->add_option("--seed", args->seed, "Random seed")->default_val(0);
+  cmd->callback([args] { run(*args); });
+}
+
+}  // namespace prism

@@ -1,0 +1,139 @@
+#include "apps/prism/scene_setup.h"
+
+#include <chrono>
+#include <sstream>
+
+#include "base/error.h"
+#include "base/log.h"
+#include "render/environment_map.h"
+#include "scene/gltf_loader.h"
+#include "spectral/cie.h"
+
+namespace prism {
+
+namespace {
+
+Rgb parse_rgb(const std::string& text, const char* what) {
+  Rgb rgb;
+  std::stringstream ss(text);
+  std::string cell;
+  int i = 0;
+  while (std::getline(ss, cell, ',')) {
+    if (i == 3) fail("{} '{}': expected three numbers R,G,B", what, text);
+    try {
+      size_t used = 0;
+      rgb[i] = std::stof(cell, &used);
+      if (used != cell.size()) throw std::invalid_argument(cell);
+    } catch (const std::exception&) {
+      fail("{} '{}': '{}' is not a number", what, text, cell);
+    }
+    if (!std::isfinite(rgb[i]) || rgb[i] < 0) fail("{} '{}': values must be finite and non-negative", what, text);
+    ++i;
+  }
+  if (i != 3) fail("{} '{}': expected three numbers R,G,B", what, text);
+  return rgb;
+}
+
+CameraDesc choose_camera(const Scene& scene, const SceneArgs& args) {
+  if (args.camera >= 0) {
+    if (size_t(args.camera) >= scene.cameras.size())
+      fail("{}: --camera {} requested, but the scene has {} camera(s)", scene.source.string(), args.camera,
+           scene.cameras.size());
+    return scene.cameras[args.camera];
+  }
+  if (!scene.cameras.empty()) return scene.cameras[0];
+  const float aspect = args.width > 0 && args.height > 0 ? float(args.width) / float(args.height) : 1.f;
+  log::info("{}: no camera in the scene; using a camera that frames the whole scene", scene.source.string());
+  return framing_camera(scene.world_bounds(), aspect);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+const char* integrator_name(IntegratorKind kind) { return kind == IntegratorKind::path ? "path" : "whitted"; }
+const char* sampler_name(SamplerKind kind) { return kind == SamplerKind::independent ? "independent" : "sobol"; }
+
+void add_scene_options(CLI::App* cmd, SceneArgs& args) {
+  cmd->add_option("scene", args.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
+  cmd->add_option("--width", args.width, "Image width in pixels (default: 640, or from --height and the camera's aspect)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--height", args.height, "Image height in pixels (default: from the width and the camera's aspect)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--camera", args.camera, "Use the N-th camera in scene order (0-based; default: the first)")
+      ->check(CLI::NonNegativeNumber);
+  CLI::Option* env =
+      cmd->add_option("--env", args.env, "Constant environment radiance as linear Rec.709 R,G,B (e.g. 1,1,1)");
+  CLI::Option* env_map =
+      cmd->add_option("--env-map", args.env_map,
+                      "Environment image: equirectangular .exr or .hdr of linear Rec.709 radiance, +Y up")
+          ->excludes(env);
+  cmd->add_option("--env-rotate", args.env_rotate, "Rotate the environment image about +Y by DEG degrees")
+      ->needs(env_map);
+  cmd->add_option("--env-scale", args.env_scale, "Multiply the environment image by S")
+      ->needs(env_map)->check(CLI::NonNegativeNumber);
+}
+
+void add_render_options(CLI::App* cmd, RenderOptions& options) {
+  cmd->add_option("--spp", options.spp, "Samples per pixel")->default_val(16)->check(CLI::PositiveNumber);
+  cmd->add_option("--seed", options.seed, "Random seed: the same seed gives the same image")->default_val(0);
+  cmd->add_option("--threads", options.threads, "Worker threads (0: all cores)")
+      ->default_val(0)->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-depth", options.path.max_depth, "Maximum path length in bounces")
+      ->default_val(16)->check(CLI::NonNegativeNumber);
+  cmd->add_option("--integrator", options.integrator,
+                  "path: unidirectional path tracing; whitted: recursive Fresnel splitting")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, IntegratorKind>{{"path", IntegratorKind::path}, {"whitted", IntegratorKind::whitted}}))
+      ->default_str("path");
+  cmd->add_option("--wavelengths", options.wavelengths, "Wavelengths carried per path (1, 4 or 8)")
+      ->default_val(kDefaultWavelengths)->check(CLI::IsMember({1, 4, 8}));
+  cmd->add_option("--sampler", options.sampler,
+                  "independent: uniform random numbers; sobol: Owen-scrambled Sobol (best with 2^k spp)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, SamplerKind>{{"independent", SamplerKind::independent}, {"sobol", SamplerKind::sobol}}))
+      ->default_str("independent");
+  cmd->add_option_function<std::string>(
+         "--light-sampling", [&options](const std::string& v) { options.path.next_event = v == "mis"; },
+         "mis: next-event estimation combined with BSDF sampling by MIS; bsdf: BSDF sampling only")
+      ->check(CLI::IsMember({"mis", "bsdf"}))->default_str("mis");
+}
+
+PreparedScene prepare_scene(const SceneArgs& args) {
+  std::optional<Rgb> env;
+  if (!args.env.empty()) env = parse_rgb(args.env, "--env");
+  cie();  // fail early if the data files are missing
+  std::optional<EnvironmentMapDesc> env_map;
+  if (!args.env_map.empty()) {
+    env_map = load_environment_map(args.env_map, args.env_rotate, args.env_scale);
+    log::info("environment map {}: {}x{}", env_map->file, env_map->image.width, env_map->image.height);
+  }
+
+  PreparedScene p;
+  auto t0 = std::chrono::steady_clock::now();
+  p.scene = std::make_unique<Scene>(load_gltf(args.scene));
+  Scene& scene = *p.scene;
+  if (env) scene.environment = RgbIlluminantSpectrum(*env);
+  scene.environment_map = std::move(env_map);
+  log::info("loaded {} in {:.2f} s: {} triangles in {} instances, {} materials, {} point, {} spot and {} "
+            "directional lights",
+            args.scene, seconds_since(t0), scene.triangle_count(), scene.instances.size(), scene.materials.size(),
+            scene.point_lights.size(), scene.spot_lights.size(), scene.directional_lights.size());
+
+  const CameraDesc camera_desc = choose_camera(scene, args);
+  const Vec2i size = resolve_resolution(args.width, args.height, camera_desc);
+  p.camera = std::make_unique<Camera>(camera_desc, size.x, size.y);
+
+  t0 = std::chrono::steady_clock::now();
+  p.world = std::make_unique<World>(scene);
+  log::info("scene features: {}", p.world->features().to_string());
+  log::info("built the BVH over {} triangles in {:.0f} ms ({:.1f} MB)", p.world->accel().triangle_count(),
+            1e3 * seconds_since(t0), p.world->accel().memory_bytes() / 1e6);
+  if (p.world->lights().empty())
+    log::warn("{}: the scene has no lights (the image will be black); light it with --env R,G,B", args.scene);
+  return p;
+}
+
+}  // namespace prism
