@@ -115,8 +115,9 @@ std::array<float, 2> metal_nk_from_reflectance(float r);
 
 // The BSDF of material m for the path's wavelengths. `front` is the dielectric on the front
 // (normal) side of the surface, or nullptr for vacuum. A λ-dependent index ratio terminates the
-// path's secondary wavelengths (pbrt-v4 §10.5.1).
-template <int N>
+// path's secondary wavelengths (pbrt-v4 §10.5.1); Dispersion = false leaves that check out for
+// scenes without dispersive materials.
+template <int N, bool Dispersion = true>
 Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<N>& lambda, const Dielectric* front) {
   if (const auto* d = std::get_if<DiffuseMaterial>(&m.kind)) return DiffuseBsdf<N>(sample(d->reflectance, lambda));
   const PbrMaterial& material = std::get<PbrMaterial>(m.kind);
@@ -141,12 +142,14 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
   const ConductorBsdf<N> metal(alpha, n, k);
   if (p.metallic >= 1) return metal;
 
-  if (disperses(m, front)) lambda.terminate_secondary();
+  if constexpr (Dispersion)
+    if (disperses(m, front)) lambda.terminate_secondary();
   const float eta = ior(material.dielectric.ior, lambda[0]) / n_front(0);
   SampledSpectrum<N> color;
   for (int i = 0; i < N; ++i) color[i] = base(lambda[i]);
   const DielectricBsdf<N> dielectric(alpha, eta, color, p.thin_walled, p.transmission, material.specular);
   if (p.metallic <= 0 && p.transmission >= 1) return dielectric;
+  if (p.metallic <= 0 && p.transmission <= 0 && material.specular <= 0) return DiffuseBsdf<N>(color);  // no specular layer
   return PbrBsdf<N>(p.metallic, metal, dielectric, p.transmission, color, alpha, eta, material.specular);
 }
 

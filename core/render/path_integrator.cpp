@@ -28,7 +28,7 @@ SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& s
 
 }  // namespace
 
-template <int N>
+template <int N, bool Media, bool Dispersion>
 SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths<N>& lambda,
                                  Sampler& sampler, const PathOptions& options, RayCounters& counters) {
   SampledSpectrum<N> L(0.f), beta(1.f);
@@ -41,7 +41,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
   for (int depth = 0;; ++depth) {
     ++(depth == 0 ? counters.primary : counters.secondary);
     const auto si = world.intersect(ray);
-    beta *= media.transmittance(si ? si->t : kInfinity, lambda);
+    if constexpr (Media) beta *= media.transmittance(si ? si->t : kInfinity, lambda);
 
     // Light reached without sampling it: full weight after a camera or specular vertex,
     // otherwise the MIS weight of BSDF sampling against light sampling.
@@ -69,7 +69,8 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     if (depth == options.max_depth) break;
 
     const bool entering = si->front_face();
-    const Bsdf<N> bsdf = make_bsdf(material, si->at, lambda, media.front_dielectric(material, entering));
+    const Dielectric* front = Media ? media.front_dielectric(material, entering) : nullptr;
+    const Bsdf<N> bsdf = make_bsdf<N, Dispersion>(material, si->at, lambda, front);
     const Frame frame = Frame::from_z(si->ns);
     const Vec3f wo = frame.to_local(si->wo);
     if (options.next_event && !bsdf_is_specular(bsdf)) L += beta * sample_direct(world, *si, frame, bsdf, wo, lambda, sampler, counters);
@@ -85,7 +86,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     ray = si->spawn(wi);
     if (bs->transmission) {
       eta_scale *= sqr(bs->eta);
-      media.cross(material, entering);
+      if constexpr (Media) media.cross(material, entering);
     }
 
     // Russian roulette: continue with probability min(1, max throughput) after the first bounce.
@@ -99,12 +100,18 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
   return L;
 }
 
-#define PRISM_INSTANTIATE(N)                                                                                  \
-  template SampledSpectrum<N> path_radiance<N>(const World&, Ray, SampledWavelengths<N>&, Sampler&, \
-                                               const PathOptions&, RayCounters&);
-PRISM_INSTANTIATE(1)
-PRISM_INSTANTIATE(4)
-PRISM_INSTANTIATE(8)
+#define PRISM_INSTANTIATE(N, MEDIA, DISPERSION)                                                           \
+  template SampledSpectrum<N> path_radiance<N, MEDIA, DISPERSION>(const World&, Ray, SampledWavelengths<N>&, \
+                                                                  Sampler&, const PathOptions&, RayCounters&);
+#define PRISM_INSTANTIATE_ALL(N)      \
+  PRISM_INSTANTIATE(N, false, false)  \
+  PRISM_INSTANTIATE(N, false, true)   \
+  PRISM_INSTANTIATE(N, true, false)   \
+  PRISM_INSTANTIATE(N, true, true)
+PRISM_INSTANTIATE_ALL(1)
+PRISM_INSTANTIATE_ALL(4)
+PRISM_INSTANTIATE_ALL(8)
+#undef PRISM_INSTANTIATE_ALL
 #undef PRISM_INSTANTIATE
 
 }  // namespace prism

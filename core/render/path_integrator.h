@@ -15,8 +15,16 @@ struct PathOptions {
   bool next_event = true;        // off: BSDF sampling only (lights found by chance; point lights never)
 };
 
+// Machinery a scene may not need, compiled in or out per render (the renderer picks from the
+// scene's features): Media, the stack of closed dielectrics a path is inside with Beer–Lambert
+// absorption; Dispersion, the check for λ-dependent index ratios that keeps only the hero
+// wavelength. A scene without them runs code that does not contain them.
+struct PathFeatures {
+  bool media = true, dispersion = true;
+};
+
 // Radiance arriving along `ray` at the path's wavelengths.
-template <int N>
+template <int N, bool Media, bool Dispersion>
 SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths<N>& lambda,
                                  Sampler& sampler, const PathOptions& options, RayCounters& counters);
 

@@ -23,8 +23,24 @@ struct TileStats {
 };
 
 template <int N>
-void render_tile(const World& world, const Camera& camera, const RenderOptions& options, int x0, int y0,
-                 Film& film, TileStats& stats) {
+using RadianceFn = SampledSpectrum<N> (*)(const World&, Ray, SampledWavelengths<N>&, Sampler&, const PathOptions&,
+                                          RayCounters&);
+
+// The radiance estimator for these options, compiled for the scene's features.
+template <int N>
+RadianceFn<N> radiance_estimator(const World& world, const RenderOptions& options) {
+  if (options.integrator == IntegratorKind::whitted)
+    return [](const World& w, Ray r, SampledWavelengths<N>& l, Sampler& s, const PathOptions& o, RayCounters& c) {
+      return whitted_radiance<N>(w, r, l, s, o, c);
+    };
+  const PathFeatures f = options.features.value_or(path_features(world.features()));
+  if (f.media) return f.dispersion ? &path_radiance<N, true, true> : &path_radiance<N, true, false>;
+  return f.dispersion ? &path_radiance<N, false, true> : &path_radiance<N, false, false>;
+}
+
+template <int N>
+void render_tile(const World& world, const Camera& camera, const RenderOptions& options, RadianceFn<N> radiance,
+                 int x0, int y0, Film& film, TileStats& stats) {
   Sampler sampler(options.seed, options.sampler);
   const int x1 = std::min(x0 + kTileSize, camera.width()), y1 = std::min(y0 + kTileSize, camera.height());
   for (int y = y0; y < y1; ++y)
@@ -34,10 +50,7 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
         const Vec2f jitter = sampler.get_2d();
         SampledWavelengths<N> lambda = SampledWavelengths<N>::sample(sampler.get_1d());
         const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
-        const SampledSpectrum<N> L =
-            options.integrator == IntegratorKind::path
-                ? path_radiance(world, ray, lambda, sampler, options.path, stats.rays)
-                : whitted_radiance(world, ray, lambda, sampler, options.path, stats.rays);
+        const SampledSpectrum<N> L = radiance(world, ray, lambda, sampler, options.path, stats.rays);
         const Xyz xyz = to_xyz(L, lambda);
         ++stats.samples;
         if (std::isfinite(xyz.x) && std::isfinite(xyz.y) && std::isfinite(xyz.z)) {
@@ -50,6 +63,7 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
 
 template <int N>
 RenderResult render_with(const World& world, const Camera& camera, const RenderOptions& options) {
+  const RadianceFn<N> radiance = radiance_estimator<N>(world, options);
   Film film(camera.width(), camera.height());
   const int tiles_x = (camera.width() + kTileSize - 1) / kTileSize;
   const int tiles_y = (camera.height() + kTileSize - 1) / kTileSize;
@@ -61,8 +75,8 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
     ThreadLimit limit(options.threads);
     parallel_for(int64_t(tiles_x) * tiles_y, [&](int64_t tile) {
       TileStats ts;
-      render_tile<N>(world, camera, options, int(tile % tiles_x) * kTileSize, int(tile / tiles_x) * kTileSize, film,
-                     ts);
+      render_tile<N>(world, camera, options, radiance, int(tile % tiles_x) * kTileSize,
+                     int(tile / tiles_x) * kTileSize, film, ts);
       {
         std::lock_guard lock(stats_mutex);
         stats.rays += ts.rays;
@@ -78,6 +92,8 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
 }
 
 }  // namespace
+
+PathFeatures path_features(const SceneFeatures& f) { return {f.dielectric_volumes, f.dispersion}; }
 
 std::string RenderStats::summary() const {
   return fmt::format(

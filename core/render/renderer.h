@@ -4,6 +4,7 @@
 // whatever the thread count.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@ struct RenderOptions {
   int wavelengths = kDefaultWavelengths;  // per path: 1, 4 or 8
   SamplerKind sampler = SamplerKind::independent;
   PathOptions path;
+  std::optional<PathFeatures> features;  // default: what the scene needs (benchmarks force more)
   bool progress = true;
 };
 
@@ -42,5 +44,9 @@ struct RenderResult {
 };
 
 RenderResult render(const World& world, const Camera& camera, const RenderOptions& options);
+
+// The path tracer's machinery a scene needs: media for closed dielectrics, dispersion checks
+// for dispersive ones.
+PathFeatures path_features(const SceneFeatures& f);
 
 }  // namespace prism

@@ -8,10 +8,17 @@ SceneFeatures analyze_features(const Scene& scene) {
     const Material& m = scene.materials[scene.meshes[inst.mesh].material];
     f.emissive_triangles |= m.emission.has_value();
     if (const auto* d = m.dielectric()) {
+      f.dielectric_volumes |= !d->thin_walled;
       f.dispersion |= d->dispersive;
       f.absorption |= d->absorption.has_value() && !d->thin_walled;
     }
-    if (const auto* p = std::get_if<PbrMaterial>(&m.kind)) f.measured_metals |= p->metal && p->metallic > 0;
+    f.textures |= m.normal_texture || m.emission_texture;
+    if (const auto* p = std::get_if<PbrMaterial>(&m.kind)) {
+      f.measured_metals |= p->metal && p->metallic > 0;
+      f.textures |= p->base_color_texture || p->metallic_roughness_texture || p->transmission_texture ||
+                    p->thickness_texture;
+    }
+    f.alpha |= m.alpha_mode != AlphaMode::opaque;
   }
   f.point_lights = !scene.point_lights.empty();
   f.spot_lights = !scene.spot_lights.empty();
@@ -34,9 +41,12 @@ std::string SceneFeatures::to_string() const {
   add(directional_lights, "directional_lights");
   add(environment, "environment");
   add(environment_map, "environment_map");
+  add(dielectric_volumes, "dielectric_volumes");
   add(dispersion, "dispersion");
   add(absorption, "absorption");
   add(measured_metals, "measured_metals");
+  add(textures, "textures");
+  add(alpha, "alpha");
   return s.empty() ? "none" : s;
 }
 

@@ -15,9 +15,12 @@ struct SceneFeatures {
   bool directional_lights = false;
   bool environment = false;      // constant radiance
   bool environment_map = false;  // an equirectangular image
-  bool dispersion = false;       // a dielectric whose index varies with wavelength
-  bool absorption = false;       // a closed dielectric volume with Beer–Lambert absorption
-  bool measured_metals = false;  // a metal with catalogue n, k tables
+  bool dielectric_volumes = false;  // closed transmissive dielectrics: paths enter and leave them
+  bool dispersion = false;          // a dielectric whose index varies with wavelength
+  bool absorption = false;          // a closed dielectric volume with Beer–Lambert absorption
+  bool measured_metals = false;     // a metal with catalogue n, k tables
+  bool textures = false;            // a material reads an image
+  bool alpha = false;               // a material is cut away by alpha (MASK or BLEND)
 
   std::string to_string() const;  // e.g. "emissive_triangles point_lights"
 };

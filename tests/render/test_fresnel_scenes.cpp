@@ -62,7 +62,7 @@ TEST_CASE("Beer-Lambert: a slab transmits exp(-sigma_a d) straight on") {
       SampledWavelengths<1> lambda = SampledWavelengths<1>::sample((lambda_nm - kLambdaMin) / (kLambdaMax - kLambdaMin),
                                                                    WavelengthSampling::uniform);
       RayCounters counters;
-      const auto L = path_radiance(world, Ray{{0, 0, 3}, {0, 0, -1}, kInfinity}, lambda, sampler, options, counters);
+      const auto L = path_radiance<1, true, true>(world, Ray{{0, 0, 3}, {0, 0, -1}, kInfinity}, lambda, sampler, options, counters);
       const Spectrum& sigma_a = *scene.materials[0].dielectric()->absorption;
       const double expected = std::exp(-double(evaluate(sigma_a, lambda[0])) * 0.5) * evaluate(*scene.environment, lambda[0]);
       INFO("sigma " << sigma << " lambda " << lambda[0]);
