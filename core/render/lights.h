@@ -92,29 +92,25 @@ struct PointLightSource {
 // KHR_lights_punctual, a = clamp(cos θ · scale + offset, 0, 1)² with
 // scale = 1 / max(1e-3, cos θ_inner − cos θ_outer) and offset = −cos θ_outer · scale.
 struct SpotLightSource {
-  Vec3f position;
-  Vec3f direction;  // unit cone axis
-  const Spectrum* intensity;
+  PointLightSource point;  // the same source without the cone
+  Vec3f direction;         // unit cone axis
   float scale, offset;
 
   explicit SpotLightSource(const SpotLight& s)
-      : position(s.position), direction(s.direction), intensity(&s.intensity),
+      : point{s.position, &s.intensity}, direction(s.direction),
         scale(1.f / std::max(1e-3f, std::cos(s.inner_angle) - std::cos(s.outer_angle))),
         offset(-std::cos(s.outer_angle) * scale) {}
 
   float attenuation(float cos_theta) const { return sqr(clamp(cos_theta * scale + offset, 0.f, 1.f)); }
 
   template <int N>
-  std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f,
+  std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f u,
                                           const SampledWavelengths<N>& lambda) const {
-    Vec3f wi = position - ctx.p;
-    const float d2 = length_squared(wi);
-    if (d2 == 0.f) return std::nullopt;
-    wi = wi / std::sqrt(d2);
-    const float a = attenuation(dot(direction, -wi));
+    auto s = point.sample_li(ctx, u, lambda);
+    const float a = s ? attenuation(dot(direction, -s->wi)) : 0.f;
     if (a == 0.f) return std::nullopt;
-    return LightSample<N>{sample(*intensity, lambda) * (a / d2), wi, 1.f,
-                          spawn_ray_to(ctx.p, ctx.p_error, ctx.n, position, {}, {})};
+    s->L *= a;
+    return s;
   }
 };
 

@@ -59,16 +59,10 @@ TEST_CASE("the output colour space sets the pixel values and the chromaticities 
 }
 
 TEST_CASE("every shared glTF asset renders at low spp with zero invalid samples", "[shared]") {
-  if (!test::shared_assets_present()) {
-    WARN("../shared is absent: skipping");
-    return;
-  }
   log::set_level(log::Level::quiet);
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(test::shared_dir() / "assets" / "gltf")) {
-    const auto ext = entry.path().extension();
-    if (ext != ".gltf" && ext != ".glb") continue;
-    INFO(entry.path().string());
-    Scene scene = load_gltf(entry.path());
+  for (const auto& file : test::shared_gltf_assets()) {
+    INFO(file.string());
+    Scene scene = load_gltf(file);
     scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});  // light every surface, even in unlit assets
     const CameraDesc camera = scene.cameras.empty() ? framing_camera(scene.world_bounds(), 1.f) : scene.cameras[0];
     const auto img = test::render_rgb(scene, camera, 24, 24, 2, 8);

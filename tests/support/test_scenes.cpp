@@ -169,6 +169,18 @@ int run_prism(const std::string& arguments, std::string* err, std::string* out) 
 }
 
 std::filesystem::path shared_dir() { return PRISM_SHARED_DIR; }
-bool shared_assets_present() { return std::filesystem::is_directory(shared_dir() / "assets" / "gltf"); }
+
+std::vector<std::filesystem::path> shared_gltf_assets() {
+  const auto root = shared_dir() / "assets" / "gltf";
+  std::vector<std::filesystem::path> files;
+  if (!std::filesystem::is_directory(root)) {
+    WARN("../shared is absent: skipping");
+    return files;
+  }
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(root))
+    if (entry.path().extension() == ".gltf" || entry.path().extension() == ".glb") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
 
 }  // namespace prism::test

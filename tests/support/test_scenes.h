@@ -61,8 +61,9 @@ std::filesystem::path temp_dir(const std::string& name);
 // in `out` when given.
 int run_prism(const std::string& arguments, std::string* err = nullptr, std::string* out = nullptr);
 
-// Whether ../shared (developer assets) is present; tests that use it skip when it is not.
-bool shared_assets_present();
+// The developer assets in ../shared (every .gltf and .glb below assets/gltf), or none when
+// ../shared is absent: tests that use them then skip with a warning.
+std::vector<std::filesystem::path> shared_gltf_assets();
 std::filesystem::path shared_dir();
 
 }  // namespace prism::test
