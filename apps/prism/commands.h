@@ -6,5 +6,6 @@
 namespace prism {
 
 void add_render_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
 
 }  // namespace prism

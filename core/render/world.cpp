@@ -5,18 +5,22 @@
 
 namespace prism {
 
-World::World(const Scene& scene) : scene_(scene), features_(analyze_features(scene)) {
-  for (const Mesh& m : scene.meshes) accel_meshes_.push_back({m.positions, m.indices});
-  std::vector<AccelInstance> accel_instances;
+Accel build_accel(const Scene& scene) {
+  std::vector<AccelMesh> meshes;
+  for (const Mesh& m : scene.meshes) meshes.push_back({m.positions, m.indices});
+  std::vector<AccelInstance> instances;
+  for (const Instance& inst : scene.instances) instances.push_back({inst.mesh, inst.to_world});
+  return Accel(meshes, instances);
+}
+
+World::World(const Scene& scene) : scene_(scene), features_(analyze_features(scene)), accel_(build_accel(scene)) {
   for (const Instance& inst : scene.instances) {
-    accel_instances.push_back({inst.mesh, inst.to_world});
     InstanceData d{&scene.meshes[inst.mesh], &inst.to_world, {}, determinant3x3(inst.to_world) < 0};
     const Transform inv_t = transpose(inverse(inst.to_world));
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) d.normal_matrix[r][c] = float(inv_t.m[r][c]);
     instances_.push_back(d);
   }
-  accel_ = Accel(accel_meshes_, accel_instances);
   add_lights();
 }
 

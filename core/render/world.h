@@ -15,6 +15,9 @@
 
 namespace prism {
 
+// The acceleration structure over the scene's instances, as World uses it.
+Accel build_accel(const Scene& scene);
+
 class World {
  public:
   explicit World(const Scene& scene);
@@ -50,7 +53,6 @@ class World {
 
   const Scene& scene_;
   SceneFeatures features_;
-  std::vector<AccelMesh> accel_meshes_;
   std::vector<InstanceData> instances_;
   Accel accel_;
   std::vector<Light> lights_;
