@@ -1,12 +1,20 @@
 #pragma once
 // The ray-scene queries of Prism: closest hit and any hit against triangle meshes placed by
 // instances. Knows nothing of materials or spectra.
+//
+// Two levels where they pay: the instances of a mesh that no other instance uses are copied
+// into one world-space BVH (the fastest to trace); a mesh shared by several instances gets one
+// BVH in its own space, which each of its instances enters through its transform, under a small
+// top-level BVH. Queries are exact functions of the geometry: the closest hit is the one with
+// the smallest t, and among equally close ones the smallest global_prim, whatever the trees'
+// shapes or the order they are visited in.
 
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "accel/bvh.h"
+#include "accel/triangle.h"
 #include "base/transform.h"
 
 namespace prism {
@@ -21,6 +29,13 @@ struct AccelInstance {
   Transform to_world;
 };
 
+struct AccelOptions {
+  bool flatten_instances = false;  // copy shared meshes into the world-space BVH too
+  // Test every triangle for every query, without the trees: the reference the tests hold the
+  // BVH to, bit for bit (same triangles in the same spaces, same triangle test).
+  bool brute_force = false;
+};
+
 struct AccelHit {
   float t;
   float b0, b1, b2;   // barycentrics of the triangle's three vertices
@@ -31,25 +46,51 @@ struct AccelHit {
 class Accel {
  public:
   Accel() = default;
-  Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> instances);
+  Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> instances, const AccelOptions& options = {});
 
-  bool intersect(const Ray& ray, AccelHit& hit) const;  // closest hit with t < ray.tmax
-  bool occluded(const Ray& ray) const;                  // any hit with t < ray.tmax
+  bool intersect(const Ray& ray, AccelHit& hit) const;  // closest hit with 0 < t < ray.tmax
+  bool occluded(const Ray& ray) const;                  // any hit with 0 < t < ray.tmax
 
   // Triangles numbered instance by instance, each instance's triangles in mesh order.
   uint32_t global_prim(const AccelHit& hit) const { return first_prim_[hit.instance] + hit.prim; }
-  size_t triangle_count() const { return triangles_.size(); }
+  size_t triangle_count() const { return triangle_count_; }
   size_t memory_bytes() const;
-  Bounds3f bounds() const { return bvh_.bounds(); }
+  Bounds3f bounds() const { return bounds_; }
 
  private:
-  struct Triangle {
-    Vec3f v0, v1, v2;  // world space
-    uint32_t instance, prim;
+  // A BVH whose leaves are blocks of triangles; `id`s are global triangle numbers in the world
+  // tree and triangle numbers within the mesh in a mesh's tree.
+  struct TriangleTree {
+    Bvh bvh;
+    std::vector<TriangleBlock, HugePageAllocator<TriangleBlock>> blocks;
+    TriangleTree() = default;
+    TriangleTree(const std::vector<std::array<Vec3f, 3>>& triangles, std::span<const uint32_t> ids);
+    size_t memory_bytes() const { return bvh.memory_bytes() + blocks.size() * sizeof(TriangleBlock); }
   };
-  Bvh bvh_;
-  std::vector<Triangle> triangles_;  // in BVH leaf order
+  // An entry of the top-level tree: the world tree, or an instance of a shared mesh.
+  struct Placement {
+    static constexpr uint32_t kWorld = 0xFFFFFFFF;
+    uint32_t instance = kWorld;
+    uint32_t tree = 0;     // into mesh_trees_
+    Transform to_object;
+  };
+  struct Closest;
+  template <bool AnyHit>
+  bool trace(const Ray& ray, Closest& closest) const;
+  template <bool AnyHit>
+  bool trace_tree(const TriangleTree& tree, uint32_t instance, const Ray& ray, Closest& closest) const;
+  template <bool AnyHit>
+  bool test_blocks(const TriangleTree& tree, uint32_t first, uint32_t count, uint32_t instance,
+                   const WatertightRay& ray, Closest& closest) const;
+
+  TriangleTree world_;
+  std::vector<TriangleTree> mesh_trees_;
+  std::vector<Placement> placements_;
+  Bvh top_;  // over placements_; empty when nothing is instanced
   std::vector<uint32_t> first_prim_;
+  size_t triangle_count_ = 0;
+  Bounds3f bounds_;
+  bool brute_force_ = false;
 };
 
 }  // namespace prism

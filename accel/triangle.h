@@ -4,9 +4,11 @@
 // origin, permute so the ray's largest axis is z, shear so the ray is +z), where the 2D edge
 // functions of a shared edge are computed identically for both triangles. Rays through an edge
 // or vertex therefore hit at least one of the triangles sharing it; none slip through.
+// One implementation, four triangles at a time: the BVH's leaves store triangles in blocks.
 
 #include <cmath>
 
+#include "accel/simd.h"
 #include "base/ray.h"
 
 namespace prism {
@@ -33,41 +35,72 @@ struct TriangleHit {
   float b0, b1, b2;  // barycentric weights of v0, v1, v2
 };
 
-// Returns true and fills hit for an intersection with 0 < t < tmax (either face).
-inline bool intersect_triangle(const WatertightRay& r, const Vec3f& v0, const Vec3f& v1, const Vec3f& v2, float tmax,
-                               TriangleHit& hit) {
-  const Vec3f a = v0 - r.o, b = v1 - r.o, c = v2 - r.o;
-  const float ax = a[r.kx] - r.sx * a[r.kz], ay = a[r.ky] - r.sy * a[r.kz];
-  const float bx = b[r.kx] - r.sx * b[r.kz], by = b[r.ky] - r.sy * b[r.kz];
-  const float cx = c[r.kx] - r.sx * c[r.kz], cy = c[r.ky] - r.sy * c[r.kz];
+// Four triangles, stored lane by lane. Unused lanes hold NaN vertices, which never hit.
+struct alignas(16) TriangleBlock {
+  static constexpr int kLanes = 4;
+  simd::f4 v[3][3];      // v[vertex][axis]
+  uint32_t id[kLanes];   // the owner's number for each triangle
+
+  TriangleBlock() {
+    for (auto& vertex : v)
+      for (auto& axis : vertex) axis = simd::f4{} + std::numeric_limits<float>::quiet_NaN();
+    for (uint32_t& i : id) i = 0;
+  }
+  void set(int lane, const Vec3f& v0, const Vec3f& v1, const Vec3f& v2, uint32_t triangle_id) {
+    const Vec3f* vs[3] = {&v0, &v1, &v2};
+    for (int k = 0; k < 3; ++k)
+      for (int axis = 0; axis < 3; ++axis) v[k][axis][lane] = (*vs[k])[axis];
+    id[lane] = triangle_id;
+  }
+};
+
+// The lanes of a block that a ray hits with 0 < t <= tmax (either face), and how.
+struct BlockHits {
+  uint32_t mask = 0;  // bit i: lane i hits
+  simd::f4 t, u, v, w, inv_det;
+
+  TriangleHit lane(int i) const { return {t[i], u[i] * inv_det[i], v[i] * inv_det[i], w[i] * inv_det[i]}; }
+};
+
+inline BlockHits intersect_triangles(const WatertightRay& r, const TriangleBlock& tri, float tmax) {
+  using simd::f4, simd::i4, simd::d4;
+  // Vertices relative to the origin, in the permuted axes.
+  const f4 ox = f4{} + r.o[r.kx], oy = f4{} + r.o[r.ky], oz = f4{} + r.o[r.kz];
+  const f4 a_x = tri.v[0][r.kx] - ox, a_y = tri.v[0][r.ky] - oy, a_z = tri.v[0][r.kz] - oz;
+  const f4 b_x = tri.v[1][r.kx] - ox, b_y = tri.v[1][r.ky] - oy, b_z = tri.v[1][r.kz] - oz;
+  const f4 c_x = tri.v[2][r.kx] - ox, c_y = tri.v[2][r.ky] - oy, c_z = tri.v[2][r.kz] - oz;
+  // Sheared into the ray's frame.
+  const f4 ax = a_x - r.sx * a_z, ay = a_y - r.sy * a_z;
+  const f4 bx = b_x - r.sx * b_z, by = b_y - r.sy * b_z;
+  const f4 cx = c_x - r.sx * c_z, cy = c_y - r.sy * c_z;
 
   // Scaled barycentrics: 2D edge functions of the edges opposite v0, v1, v2.
-  float u = cx * by - cy * bx;
-  float v = ax * cy - ay * cx;
-  float w = bx * ay - by * ax;
-  if (u == 0.f || v == 0.f || w == 0.f) {  // exactly on an edge in float: decide in double
-    u = float(double(cx) * by - double(cy) * bx);
-    v = float(double(ax) * cy - double(ay) * cx);
-    w = float(double(bx) * ay - double(by) * ax);
+  f4 u = cx * by - cy * bx;
+  f4 v = ax * cy - ay * cx;
+  f4 w = bx * ay - by * ax;
+  const i4 on_edge = (u == 0.f) | (v == 0.f) | (w == 0.f);
+  if (simd::bits(on_edge)) {  // exactly on an edge in float: decide in double
+    const auto dbl = [](f4 x) { return __builtin_convertvector(x, d4); };
+    const f4 ud = __builtin_convertvector(dbl(cx) * dbl(by) - dbl(cy) * dbl(bx), f4);
+    const f4 vd = __builtin_convertvector(dbl(ax) * dbl(cy) - dbl(ay) * dbl(cx), f4);
+    const f4 wd = __builtin_convertvector(dbl(bx) * dbl(ay) - dbl(by) * dbl(ax), f4);
+    u = on_edge ? ud : u;
+    v = on_edge ? vd : v;
+    w = on_edge ? wd : w;
   }
-  if ((u < 0.f || v < 0.f || w < 0.f) && (u > 0.f || v > 0.f || w > 0.f)) return false;
-  const float det = u + v + w;
-  if (det == 0.f) return false;
+  const i4 outside = ((u < 0.f) | (v < 0.f) | (w < 0.f)) & ((u > 0.f) | (v > 0.f) | (w > 0.f));
+  const f4 det = u + v + w;
 
-  // Scaled distance T = det · t, compared with det · tmax without dividing.
-  const float az = r.sz * a[r.kz], bz = r.sz * b[r.kz], cz = r.sz * c[r.kz];
-  const float t_scaled = u * az + v * bz + w * cz;
-  if (det < 0.f && (t_scaled >= 0.f || t_scaled < tmax * det)) return false;
-  if (det > 0.f && (t_scaled <= 0.f || t_scaled > tmax * det)) return false;
-
-  const float inv_det = 1.f / det;
-  hit = {t_scaled * inv_det, u * inv_det, v * inv_det, w * inv_det};
-  return hit.t > 0.f && hit.t < tmax;
+  // Scaled distance T = det · t.
+  const f4 az = r.sz * a_z, bz = r.sz * b_z, cz = r.sz * c_z;
+  const f4 t_scaled = u * az + v * bz + w * cz;
+  BlockHits hits;
+  hits.inv_det = 1.f / det;
+  hits.t = t_scaled * hits.inv_det;
+  hits.u = u, hits.v = v, hits.w = w;
+  hits.mask = simd::bits(~outside & (det != 0.f) & (hits.t > 0.f) & (hits.t <= tmax));
+  return hits;
 }
-
-}  // namespace prism
-
-namespace prism {
 
 // Unit normal of triangle (v0, v1, v2) by the right-hand rule (counter-clockwise = front),
 // computed in double so that tiny or sliver triangles still get one; (0, 0, 0) if degenerate.

@@ -25,6 +25,7 @@ struct BenchArgs {
   std::string scene, rays, hits;
   int threads = 0, repeat = 5;
   bool occluded = false;
+  AccelOptions accel;
 };
 
 constexpr size_t kChunk = 4096;
@@ -65,7 +66,7 @@ void run(const BenchArgs& args) {
   // The build uses as many threads as the tracing, as raybench's Embree build does by default.
   const ThreadLimit limit(threads);
   const auto t0 = std::chrono::steady_clock::now();
-  const Accel accel = build_accel(scene);
+  const Accel accel = build_accel(scene, args.accel);
   const double build_ms = 1e3 * seconds_since(t0);
   log::info("{}: {} triangles in {} instances; BVH built in {:.1f} ms, {:.1f} MB", args.scene,
             accel.triangle_count(), scene.instances.size(), build_ms, accel.memory_bytes() / 1e6);
@@ -97,6 +98,8 @@ void add_bench_command(CLI::App& app) {
       ->default_val(0)->check(CLI::NonNegativeNumber);
   cmd->add_option("--repeat", args->repeat, "Timed passes")->default_val(5)->check(CLI::PositiveNumber);
   cmd->add_flag("--occluded", args->occluded, "Any-hit (shadow) queries instead of closest hit");
+  cmd->add_flag("--flatten", args->accel.flatten_instances,
+                "Copy shared meshes into the world-space BVH instead of instancing them");
   cmd->add_option("--hits", args->hits, "Write the last pass's results in raybench's HITS.bin format");
   cmd->callback([args] { run(*args); });
 }

@@ -16,11 +16,11 @@
 namespace prism {
 
 // The acceleration structure over the scene's instances, as World uses it.
-Accel build_accel(const Scene& scene);
+Accel build_accel(const Scene& scene, const AccelOptions& options = {});
 
 class World {
  public:
-  explicit World(const Scene& scene);
+  explicit World(const Scene& scene, const AccelOptions& accel = {});
 
   std::optional<SurfaceInteraction> intersect(const Ray& ray) const;
   bool occluded(const Ray& ray) const { return accel_.occluded(ray); }
