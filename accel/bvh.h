@@ -104,6 +104,10 @@ bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&
   using simd::f8;
   if (root_ == kNoRoot) return false;
   const BvhRay ray = ray_in;  // a local copy the compiler can keep in registers
+  const auto prefetch = [](const void* p, size_t bytes) {
+    for (size_t offset = 0; offset < bytes; offset += 64) __builtin_prefetch(static_cast<const char*>(p) + offset);
+    __builtin_prefetch(static_cast<const char*>(p) + bytes - 1);
+  };
   struct Entry {
     uint32_t ref;
     float t;  // where the ray enters the box
@@ -142,9 +146,13 @@ bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&
         // Several: fetch them all now, so that memory works while the nearest is traversed.
         for (uint32_t m = mask; m; m &= m - 1) {
           const uint32_t c = node.child[std::countr_zero(m)];
-          const char* p = bvh_ref::is_leaf(c) ? reinterpret_cast<const char*>(&blocks[bvh_ref::first_block(c)])
-                                              : reinterpret_cast<const char*>(&nodes_[c]);
-          for (size_t line = 0; line < sizeof(BvhNode); line += 64) __builtin_prefetch(p + line);
+          if (bvh_ref::is_leaf(c)) prefetch(&blocks[bvh_ref::first_block(c)], sizeof(Block));
+          else prefetch(&nodes_[c], sizeof(BvhNode));
+        }
+        if constexpr (AnyHit) {  // any hit will do: no order, no distances to keep
+          ref = node.child[i];
+          for (mask &= mask - 1; mask; mask &= mask - 1) stack[top++].ref = node.child[std::countr_zero(mask)];
+          continue;
         }
         alignas(32) float t[8];
         std::memcpy(t, &t_enter, sizeof t);
@@ -173,6 +181,11 @@ bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&
       }
     }
     // Next: the nearest box still pending that starts before tmax.
+    if constexpr (AnyHit) {
+      if (top == 0) return false;
+      ref = stack[--top].ref;
+      continue;
+    }
     do {
       if (top == 0) return found;
       --top;
