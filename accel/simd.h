@@ -13,9 +13,9 @@ namespace prism::simd {
 
 using f4 = float __attribute__((vector_size(16)));
 using i4 = int32_t __attribute__((vector_size(16)));
-using d4 = double __attribute__((vector_size(32)));
 using f8 = float __attribute__((vector_size(32)));
 using i8 = int32_t __attribute__((vector_size(32)));
+using d8 = double __attribute__((vector_size(64)));
 
 template <typename V>
 V load(const float* p) {
@@ -38,15 +38,6 @@ inline uint32_t bits(i8 m) {
 #else
   uint32_t b = 0;
   for (int i = 0; i < 8; ++i) b |= uint32_t(m[i] != 0) << i;
-  return b;
-#endif
-}
-inline uint32_t bits(i4 m) {
-#if defined(__SSE__)
-  return uint32_t(_mm_movemask_ps(__m128(m)));
-#else
-  uint32_t b = 0;
-  for (int i = 0; i < 4; ++i) b |= uint32_t(m[i] != 0) << i;
   return b;
 #endif
 }

@@ -4,7 +4,7 @@
 // origin, permute so the ray's largest axis is z, shear so the ray is +z), where the 2D edge
 // functions of a shared edge are computed identically for both triangles. Rays through an edge
 // or vertex therefore hit at least one of the triangles sharing it; none slip through.
-// One implementation, four triangles at a time: the BVH's leaves store triangles in blocks.
+// One implementation, eight triangles at a time: the BVH's leaves store triangles in blocks.
 
 #include <cmath>
 
@@ -35,15 +35,15 @@ struct TriangleHit {
   float b0, b1, b2;  // barycentric weights of v0, v1, v2
 };
 
-// Four triangles, stored lane by lane. Unused lanes hold NaN vertices, which never hit.
-struct alignas(16) TriangleBlock {
-  static constexpr int kLanes = 4;
-  simd::f4 v[3][3];      // v[vertex][axis]
+// Eight triangles, stored lane by lane. Unused lanes hold NaN vertices, which never hit.
+struct alignas(32) TriangleBlock {
+  static constexpr int kLanes = 8;
+  simd::f8 v[3][3];      // v[vertex][axis]
   uint32_t id[kLanes];   // the owner's number for each triangle
 
   TriangleBlock() {
     for (auto& vertex : v)
-      for (auto& axis : vertex) axis = simd::f4{} + std::numeric_limits<float>::quiet_NaN();
+      for (auto& axis : vertex) axis = simd::f8{} + std::numeric_limits<float>::quiet_NaN();
     for (uint32_t& i : id) i = 0;
   }
   void set(int lane, const Vec3f& v0, const Vec3f& v1, const Vec3f& v2, uint32_t triangle_id) {
@@ -57,43 +57,43 @@ struct alignas(16) TriangleBlock {
 // The lanes of a block that a ray hits with 0 < t <= tmax (either face), and how.
 struct BlockHits {
   uint32_t mask = 0;  // bit i: lane i hits
-  simd::f4 t, u, v, w, inv_det;
+  simd::f8 t, u, v, w, inv_det;
 
   TriangleHit lane(int i) const { return {t[i], u[i] * inv_det[i], v[i] * inv_det[i], w[i] * inv_det[i]}; }
 };
 
 inline BlockHits intersect_triangles(const WatertightRay& r, const TriangleBlock& tri, float tmax) {
-  using simd::f4, simd::i4, simd::d4;
+  using simd::f8, simd::i8, simd::d8;
   // Vertices relative to the origin, in the permuted axes.
-  const f4 ox = f4{} + r.o[r.kx], oy = f4{} + r.o[r.ky], oz = f4{} + r.o[r.kz];
-  const f4 a_x = tri.v[0][r.kx] - ox, a_y = tri.v[0][r.ky] - oy, a_z = tri.v[0][r.kz] - oz;
-  const f4 b_x = tri.v[1][r.kx] - ox, b_y = tri.v[1][r.ky] - oy, b_z = tri.v[1][r.kz] - oz;
-  const f4 c_x = tri.v[2][r.kx] - ox, c_y = tri.v[2][r.ky] - oy, c_z = tri.v[2][r.kz] - oz;
+  const f8 ox = f8{} + r.o[r.kx], oy = f8{} + r.o[r.ky], oz = f8{} + r.o[r.kz];
+  const f8 a_x = tri.v[0][r.kx] - ox, a_y = tri.v[0][r.ky] - oy, a_z = tri.v[0][r.kz] - oz;
+  const f8 b_x = tri.v[1][r.kx] - ox, b_y = tri.v[1][r.ky] - oy, b_z = tri.v[1][r.kz] - oz;
+  const f8 c_x = tri.v[2][r.kx] - ox, c_y = tri.v[2][r.ky] - oy, c_z = tri.v[2][r.kz] - oz;
   // Sheared into the ray's frame.
-  const f4 ax = a_x - r.sx * a_z, ay = a_y - r.sy * a_z;
-  const f4 bx = b_x - r.sx * b_z, by = b_y - r.sy * b_z;
-  const f4 cx = c_x - r.sx * c_z, cy = c_y - r.sy * c_z;
+  const f8 ax = a_x - r.sx * a_z, ay = a_y - r.sy * a_z;
+  const f8 bx = b_x - r.sx * b_z, by = b_y - r.sy * b_z;
+  const f8 cx = c_x - r.sx * c_z, cy = c_y - r.sy * c_z;
 
   // Scaled barycentrics: 2D edge functions of the edges opposite v0, v1, v2.
-  f4 u = cx * by - cy * bx;
-  f4 v = ax * cy - ay * cx;
-  f4 w = bx * ay - by * ax;
-  const i4 on_edge = (u == 0.f) | (v == 0.f) | (w == 0.f);
+  f8 u = cx * by - cy * bx;
+  f8 v = ax * cy - ay * cx;
+  f8 w = bx * ay - by * ax;
+  const i8 on_edge = (u == 0.f) | (v == 0.f) | (w == 0.f);
   if (simd::bits(on_edge)) {  // exactly on an edge in float: decide in double
-    const auto dbl = [](f4 x) { return __builtin_convertvector(x, d4); };
-    const f4 ud = __builtin_convertvector(dbl(cx) * dbl(by) - dbl(cy) * dbl(bx), f4);
-    const f4 vd = __builtin_convertvector(dbl(ax) * dbl(cy) - dbl(ay) * dbl(cx), f4);
-    const f4 wd = __builtin_convertvector(dbl(bx) * dbl(ay) - dbl(by) * dbl(ax), f4);
+    const auto dbl = [](f8 x) { return __builtin_convertvector(x, d8); };
+    const f8 ud = __builtin_convertvector(dbl(cx) * dbl(by) - dbl(cy) * dbl(bx), f8);
+    const f8 vd = __builtin_convertvector(dbl(ax) * dbl(cy) - dbl(ay) * dbl(cx), f8);
+    const f8 wd = __builtin_convertvector(dbl(bx) * dbl(ay) - dbl(by) * dbl(ax), f8);
     u = on_edge ? ud : u;
     v = on_edge ? vd : v;
     w = on_edge ? wd : w;
   }
-  const i4 outside = ((u < 0.f) | (v < 0.f) | (w < 0.f)) & ((u > 0.f) | (v > 0.f) | (w > 0.f));
-  const f4 det = u + v + w;
+  const i8 outside = ((u < 0.f) | (v < 0.f) | (w < 0.f)) & ((u > 0.f) | (v > 0.f) | (w > 0.f));
+  const f8 det = u + v + w;
 
   // Scaled distance T = det · t.
-  const f4 az = r.sz * a_z, bz = r.sz * b_z, cz = r.sz * c_z;
-  const f4 t_scaled = u * az + v * bz + w * cz;
+  const f8 az = r.sz * a_z, bz = r.sz * b_z, cz = r.sz * c_z;
+  const f8 t_scaled = u * az + v * bz + w * cz;
   BlockHits hits;
   hits.inv_det = 1.f / det;
   hits.t = t_scaled * hits.inv_det;

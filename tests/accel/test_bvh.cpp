@@ -79,9 +79,10 @@ struct Reference {
 // Tests every triangle; keeps the smallest (t, number), as Accel defines the closest hit.
 class BruteForce {
  public:
-  explicit BruteForce(const std::vector<Triangle>& triangles) : blocks_((triangles.size() + 3) / 4) {
+  static constexpr int kLanes = TriangleBlock::kLanes;
+  explicit BruteForce(const std::vector<Triangle>& triangles) : blocks_((triangles.size() + kLanes - 1) / kLanes) {
     for (uint32_t p = 0; p < triangles.size(); ++p)
-      blocks_[p / 4].set(int(p % 4), triangles[p][0], triangles[p][1], triangles[p][2], p);
+      blocks_[p / kLanes].set(int(p % kLanes), triangles[p][0], triangles[p][1], triangles[p][2], p);
   }
   Reference operator()(const Ray& ray) const {
     const WatertightRay wr(ray);
@@ -89,7 +90,7 @@ class BruteForce {
     best.h.t = ray.tmax;
     for (const TriangleBlock& block : blocks_) {
       const BlockHits hits = intersect_triangles(wr, block, best.h.t);
-      for (int lane = 0; lane < 4; ++lane) {
+      for (int lane = 0; lane < kLanes; ++lane) {
         const uint32_t p = block.id[lane];
         const bool closer = hits.t[lane] < best.h.t || (best.hit && hits.t[lane] == best.h.t && p < best.prim);
         if ((hits.mask >> lane & 1) && closer) best = {true, p, hits.lane(lane)};

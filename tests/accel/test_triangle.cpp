@@ -1,4 +1,4 @@
-// The four-wide watertight triangle test: against an independent double-precision
+// The eight-wide watertight triangle test: against an independent double-precision
 // Möller–Trumbore oracle, and lane by lane (a triangle's answer does not depend on its lane or
 // its neighbours).
 
@@ -68,7 +68,7 @@ TEST_CASE("the watertight test agrees with a double-precision oracle away from e
 TEST_CASE("a triangle's answer does not depend on its lane or on the other lanes") {
   Rng rng(12, 0);
   for (int i = 0; i < 20000; ++i) {
-    // Four triangles around a common point the ray passes near, two sharing an edge, so that
+    // A block of triangles around a common point the ray passes near, two sharing an edge, so that
     // hits and misses mix in one block. Every other time on an integer grid, with an
     // axis-parallel ray from a grid point: rays then pass exactly through edges and vertices,
     // where the edge functions are exactly 0 and are decided in double.
@@ -78,7 +78,8 @@ TEST_CASE("a triangle's answer does not depend on its lane or on the other lanes
       return grid ? Vec3f(std::round(p.x), std::round(p.y), std::round(p.z)) : p;
     };
     const Vec3f c = point(1);
-    Vec3f v[4][3];
+    constexpr int kLanes = TriangleBlock::kLanes;
+    Vec3f v[kLanes][3];
     for (auto& tri : v)
       for (Vec3f& p : tri) p = c + point(4);
     v[1][0] = v[0][1], v[1][1] = v[0][0];
@@ -87,13 +88,14 @@ TEST_CASE("a triangle's answer does not depend on its lane or on the other lanes
     const Ray aimed{o, normalize((v[0][0] + v[0][1]) * 0.5f - o), kInfinity};  // at the shared edge
     for (const Ray& r : {ray, aimed}) {
       TriangleBlock block;
-      for (int lane = 0; lane < 4; ++lane) block.set(lane, v[lane][0], v[lane][1], v[lane][2], lane);
+      for (int lane = 0; lane < kLanes; ++lane) block.set(lane, v[lane][0], v[lane][1], v[lane][2], lane);
       const BlockHits all = intersect_triangles(WatertightRay(r), block, r.tmax);
-      for (int lane = 0; lane < 4; ++lane) {
-        const BlockHits alone = test_one(r, v[lane][0], v[lane][1], v[lane][2], 3 - lane);
-        REQUIRE(bool(all.mask >> lane & 1) == bool(alone.mask >> (3 - lane) & 1));
+      for (int lane = 0; lane < kLanes; ++lane) {
+        const int mirror = kLanes - 1 - lane;  // the same triangle alone, in another lane
+        const BlockHits alone = test_one(r, v[lane][0], v[lane][1], v[lane][2], mirror);
+        REQUIRE(bool(all.mask >> lane & 1) == bool(alone.mask >> mirror & 1));
         if (all.mask >> lane & 1) {
-          const TriangleHit a = all.lane(lane), b = alone.lane(3 - lane);
+          const TriangleHit a = all.lane(lane), b = alone.lane(mirror);
           REQUIRE(a.t == b.t);
           REQUIRE(a.b0 == b.b0);
           REQUIRE(a.b1 == b.b1);
