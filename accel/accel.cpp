@@ -39,14 +39,16 @@ Bounds3f transform_bounds(const Transform& m, const Bounds3f& b) {
 
 }  // namespace
 
-Accel::TriangleTree::TriangleTree(const std::vector<Triangle>& triangles, std::span<const uint32_t> ids) {
+Accel::TriangleTree::TriangleTree(const std::vector<Triangle>& triangles, std::span<const uint32_t> ids,
+                                  std::span<const Bounds3f> solo_bounds) {
   std::vector<Bounds3f> bounds(triangles.size());
   tbb::parallel_for(size_t(0), triangles.size(), [&](size_t i) {
     if (!hittable(triangles[i])) return;
     for (const Vec3f& v : triangles[i]) bounds[i].extend(v);
   });
+  bounds.insert(bounds.end(), solo_bounds.begin(), solo_bounds.end());
   std::vector<uint32_t> slots;
-  bvh = Bvh::build(bounds, {TriangleBlock::kLanes}, slots);
+  bvh = Bvh::build(bounds, {.block_size = TriangleBlock::kLanes, .first_solo = uint32_t(triangles.size())}, slots);
   blocks.resize(slots.size() / TriangleBlock::kLanes);
   tbb::parallel_for(size_t(0), blocks.size(), [&](size_t b) {
     for (int lane = 0; lane < TriangleBlock::kLanes; ++lane) {
@@ -85,16 +87,10 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
       world_ids[world_first[i] + p] = first_prim_[i] + p;
     }
   });
-  world_ = TriangleTree(world_triangles, world_ids);
 
-  // One tree per shared mesh, in object space; the top-level tree over it and the instances.
-  std::vector<Placement> entries;
-  std::vector<Bounds3f> entry_bounds;
-  if (!world_.bvh.empty()) {
-    entries.push_back({});
-    entry_bounds.push_back(world_.bvh.bounds());
-  }
+  // One tree per shared mesh, in object space; each instance of it a solo leaf of the world tree.
   std::vector<int> tree_of(meshes.size(), -1);
+  std::vector<Bounds3f> placement_bounds;
   for (uint32_t i = 0; i < instances.size(); ++i) {
     const uint32_t mesh = instances[i].mesh;
     if (!shared(instances[i])) continue;
@@ -108,32 +104,24 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
       }
       mesh_trees_.emplace_back(triangles, ids);
     }
-    entries.push_back({i, uint32_t(tree_of[mesh]), inverse(instances[i].to_world)});
-    entry_bounds.push_back(mesh_trees_[tree_of[mesh]].bvh.empty()
-                               ? Bounds3f{}
-                               : transform_bounds(instances[i].to_world, mesh_trees_[tree_of[mesh]].bvh.bounds()));
+    const Bvh& tree = mesh_trees_[tree_of[mesh]].bvh;
+    placements_.push_back({i, uint32_t(tree_of[mesh]), inverse(instances[i].to_world)});
+    placement_bounds.push_back(tree.empty() ? Bounds3f{} : transform_bounds(instances[i].to_world, tree.bounds()));
   }
-  for (const Bounds3f& b : entry_bounds) bounds_.extend(b);
-  if (mesh_trees_.empty()) {
-    placements_ = std::move(entries);
-    return;
-  }
-  std::vector<uint32_t> slots;
-  top_ = Bvh::build(entry_bounds, {1}, slots);
-  for (uint32_t s : slots) placements_.push_back(entries[s]);  // one per slot: the leaves index them
+  world_ = TriangleTree(world_triangles, world_ids, placement_bounds);
 }
 
 struct Accel::Closest {
   float t;           // the closest hit so far (ray.tmax before any)
   uint32_t id = 0;   // its global triangle number: 0 before any, so that t = tmax never wins
-  uint32_t instance = Placement::kWorld;
+  uint32_t instance = kWorld;
   TriangleHit hit{};
 };
 
 template <bool AnyHit>
 bool Accel::test_blocks(const TriangleTree& tree, uint32_t first, uint32_t count, uint32_t instance,
                         const WatertightRay& ray, Closest& closest) const {
-  const uint32_t base = instance == Placement::kWorld ? 0 : first_prim_[instance];
+  const uint32_t base = instance == kWorld ? 0 : first_prim_[instance];
   bool found = false;
   for (uint32_t b = first; b < first + count; ++b) {
     const TriangleBlock& block = tree.blocks[b];
@@ -153,49 +141,42 @@ bool Accel::test_blocks(const TriangleTree& tree, uint32_t first, uint32_t count
 }
 
 template <bool AnyHit>
-bool Accel::trace_tree(const TriangleTree& tree, uint32_t instance, const Ray& ray, Closest& closest) const {
-  const WatertightRay wr(ray);
-  if (brute_force_) return test_blocks<AnyHit>(tree, 0, uint32_t(tree.blocks.size()), instance, wr, closest);
-  return tree.bvh.traverse<AnyHit>(BvhRay(ray), closest.t, tree.blocks.data(), [&](uint32_t first, uint32_t count) {
-    return test_blocks<AnyHit>(tree, first, count, instance, wr, closest);
-  });
-}
-
-template <bool AnyHit>
 bool Accel::trace(const Ray& ray, Closest& closest) const {
-  const auto enter = [&](const Placement& p) {
-    if (p.instance == Placement::kWorld) return trace_tree<AnyHit>(world_, p.instance, ray, closest);
+  // The world tree's leaves, and its solo leaves: the instances of shared meshes.
+  const WatertightRay world_ray(ray);
+  const auto leaf = [&](uint32_t first, uint32_t count) {
+    return test_blocks<AnyHit>(world_, first, count, kWorld, world_ray, closest);
+  };
+  const auto enter = [&](uint32_t placement) {
+    const Placement& p = placements_[placement];
+    const TriangleTree& tree = mesh_trees_[p.tree];
     // In the mesh's space the direction is not unit length, so t stays the world-space distance.
     const Ray object_ray{Vec3f(p.to_object.point(Vec3d(ray.o))), Vec3f(p.to_object.vector(Vec3d(ray.d))), ray.tmax};
-    return trace_tree<AnyHit>(mesh_trees_[p.tree], p.instance, object_ray, closest);
+    const WatertightRay wr(object_ray);
+    const auto mesh_leaf = [&](uint32_t first, uint32_t count) {
+      return test_blocks<AnyHit>(tree, first, count, p.instance, wr, closest);
+    };
+    if (brute_force_) return mesh_leaf(0, uint32_t(tree.blocks.size()));
+    return tree.bvh.traverse<AnyHit>(BvhRay(object_ray), closest.t, tree.blocks.data(), mesh_leaf,
+                                     [](uint32_t) { return false; });  // mesh trees have no solo leaves
   };
-  if (top_.empty() || brute_force_) {
-    bool found = false;
-    for (const Placement& p : placements_) {
-      if (enter(p)) {
-        found = true;
-        if constexpr (AnyHit) return true;
-      }
+  if (brute_force_) {
+    bool found = leaf(0, uint32_t(world_.blocks.size()));
+    for (uint32_t p = 0; p < placements_.size(); ++p) {
+      if constexpr (AnyHit)
+        if (found) return true;
+      found |= enter(p);
     }
     return found;
   }
-  return top_.traverse<AnyHit>(BvhRay(ray), closest.t, placements_.data(), [&](uint32_t first, uint32_t count) {
-    bool found = false;
-    for (uint32_t s = first; s < first + count; ++s) {
-      if (enter(placements_[s])) {
-        found = true;
-        if constexpr (AnyHit) return true;
-      }
-    }
-    return found;
-  });
+  return world_.bvh.traverse<AnyHit>(BvhRay(ray), closest.t, world_.blocks.data(), leaf, enter);
 }
 
 bool Accel::intersect(const Ray& ray, AccelHit& hit) const {
   Closest closest{ray.tmax};
   if (!trace<false>(ray, closest)) return false;
   uint32_t instance = closest.instance;
-  if (instance == Placement::kWorld)
+  if (instance == kWorld)
     instance = uint32_t(std::upper_bound(first_prim_.begin(), first_prim_.end(), closest.id) - first_prim_.begin() - 1);
   const TriangleHit& h = closest.hit;
   hit = {h.t, h.b0, h.b1, h.b2, instance, closest.id - first_prim_[instance]};
@@ -208,8 +189,7 @@ bool Accel::occluded(const Ray& ray) const {
 }
 
 size_t Accel::memory_bytes() const {
-  size_t bytes = world_.memory_bytes() + top_.memory_bytes() + placements_.size() * sizeof(Placement) +
-                 first_prim_.size() * sizeof(uint32_t);
+  size_t bytes = world_.memory_bytes() + placements_.size() * sizeof(Placement) + first_prim_.size() * sizeof(uint32_t);
   for (const TriangleTree& t : mesh_trees_) bytes += t.memory_bytes();
   return bytes;
 }

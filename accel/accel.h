@@ -4,10 +4,10 @@
 //
 // Two levels where they pay: the instances of a mesh that no other instance uses are copied
 // into one world-space BVH (the fastest to trace); a mesh shared by several instances gets one
-// BVH in its own space, which each of its instances enters through its transform, under a small
-// top-level BVH. Queries are exact functions of the geometry: the closest hit is the one with
-// the smallest t, and among equally close ones the smallest global_prim, whatever the trees'
-// shapes or the order they are visited in.
+// BVH in its own space, and each of its instances enters the world BVH as a leaf of its own,
+// which the ray crosses into the mesh's space through the instance's transform. Queries are
+// exact functions of the geometry: the closest hit is the one with the smallest t, and among
+// equally close ones the smallest global_prim, whatever the trees' shapes or visiting order.
 
 #include <cstdint>
 #include <span>
@@ -55,41 +55,39 @@ class Accel {
   uint32_t global_prim(const AccelHit& hit) const { return first_prim_[hit.instance] + hit.prim; }
   size_t triangle_count() const { return triangle_count_; }
   size_t memory_bytes() const;
-  Bounds3f bounds() const { return bounds_; }
+  Bounds3f bounds() const { return world_.bvh.bounds(); }
 
  private:
+  static constexpr uint32_t kWorld = 0xFFFFFFFF;  // "instance" of triangles in the world tree
   // A BVH whose leaves are blocks of triangles; `id`s are global triangle numbers in the world
-  // tree and triangle numbers within the mesh in a mesh's tree.
+  // tree and triangle numbers within the mesh in a mesh's tree. The world tree's solo leaves
+  // are its instances of shared meshes.
   struct TriangleTree {
     Bvh bvh;
     std::vector<TriangleBlock, HugePageAllocator<TriangleBlock>> blocks;
     TriangleTree() = default;
-    TriangleTree(const std::vector<std::array<Vec3f, 3>>& triangles, std::span<const uint32_t> ids);
+    TriangleTree(const std::vector<std::array<Vec3f, 3>>& triangles, std::span<const uint32_t> ids,
+                 std::span<const Bounds3f> solo_bounds = {});
     size_t memory_bytes() const { return bvh.memory_bytes() + blocks.size() * sizeof(TriangleBlock); }
   };
-  // An entry of the top-level tree: the world tree, or an instance of a shared mesh.
+  // An instance of a shared mesh.
   struct Placement {
-    static constexpr uint32_t kWorld = 0xFFFFFFFF;
-    uint32_t instance = kWorld;
-    uint32_t tree = 0;     // into mesh_trees_
+    uint32_t instance;
+    uint32_t tree;  // into mesh_trees_
     Transform to_object;
   };
   struct Closest;
   template <bool AnyHit>
   bool trace(const Ray& ray, Closest& closest) const;
   template <bool AnyHit>
-  bool trace_tree(const TriangleTree& tree, uint32_t instance, const Ray& ray, Closest& closest) const;
-  template <bool AnyHit>
   bool test_blocks(const TriangleTree& tree, uint32_t first, uint32_t count, uint32_t instance,
                    const WatertightRay& ray, Closest& closest) const;
 
   TriangleTree world_;
   std::vector<TriangleTree> mesh_trees_;
-  std::vector<Placement> placements_;
-  Bvh top_;  // over placements_; empty when nothing is instanced
+  std::vector<Placement> placements_;  // the world tree's solo leaves
   std::vector<uint32_t> first_prim_;
   size_t triangle_count_ = 0;
-  Bounds3f bounds_;
   bool brute_force_ = false;
 };
 

@@ -29,23 +29,28 @@ struct alignas(64) BvhNode {
   uint32_t child[kWidth];
 };
 
-// A child reference: an inner node's index, or a leaf's run of blocks.
+// A child reference: an inner node's index, or a leaf: a run of blocks, or one primitive that the
+// BVH's owner handles itself ("solo", such as an instance in Accel's world tree).
 namespace bvh_ref {
 inline constexpr uint32_t kLeaf = 1u << 31;
 inline constexpr int kCountShift = 27;
-inline constexpr uint32_t kMaxLeafBlocks = 16;
-inline constexpr uint32_t kMaxFirstBlock = (1u << kCountShift) - 1;
+inline constexpr uint32_t kSolo = 15;  // this block count marks a solo leaf
+inline constexpr uint32_t kMaxLeafBlocks = kSolo - 1;
+inline constexpr uint32_t kMaxIndex = (1u << kCountShift) - 1;
 constexpr uint32_t leaf(uint32_t first_block, uint32_t blocks) {
   return kLeaf | (blocks - 1) << kCountShift | first_block;
 }
+constexpr uint32_t solo(uint32_t index) { return kLeaf | (kSolo - 1) << kCountShift | index; }
 constexpr bool is_leaf(uint32_t ref) { return ref & kLeaf; }
-constexpr uint32_t first_block(uint32_t ref) { return ref & kMaxFirstBlock; }
 constexpr uint32_t block_count(uint32_t ref) { return ((ref & ~kLeaf) >> kCountShift) + 1; }
+constexpr bool is_solo(uint32_t ref) { return block_count(ref) == kSolo; }
+constexpr uint32_t index(uint32_t ref) { return ref & kMaxIndex; }  // first block, or the solo primitive
 }  // namespace bvh_ref
 
 struct BvhBuildOptions {
   int block_size = 4;            // primitive slots per leaf block (the SIMD width of the leaf test)
   float traversal_cost = 1.f;    // SAH: cost of visiting a node, relative to testing one block
+  uint32_t first_solo = 0xFFFFFFFF;  // primitives numbered from here on get a solo leaf each
 };
 
 // Per-ray constants of the slab test.
@@ -75,6 +80,7 @@ class Bvh {
   Bvh() = default;
   // Builds over the primitives whose bounds are not empty. `slots` receives them in the order
   // the leaves list them: block after block of options.block_size slots, unused ones kEmptySlot.
+  // Solo primitives are not in `slots`: their leaves name them (minus options.first_solo).
   static Bvh build(std::span<const Bounds3f> prim_bounds, const BvhBuildOptions& options,
                    std::vector<uint32_t>& slots);
 
@@ -82,11 +88,12 @@ class Bvh {
   Bounds3f bounds() const { return bounds_; }
   size_t memory_bytes() const { return nodes_.size() * sizeof(BvhNode); }
 
-  // Visits the leaves a ray may hit, nearest first: calls leaf(first_block, block_count), which
-  // tests the leaf's primitives, lowers tmax to any closer hit and returns whether it hit.
-  // Boxes entered beyond tmax are skipped; with AnyHit, returns at the first hit.
-  template <bool AnyHit, typename Block, typename Leaf>
-  bool traverse(const BvhRay& ray, float& tmax, const Block* blocks, Leaf&& leaf) const;
+  // Visits the leaves a ray may hit, nearest first: calls leaf(first_block, block_count), or
+  // solo(index) for a solo leaf, which tests the leaf's primitives, lowers tmax to any closer hit
+  // and returns whether it hit. Boxes entered beyond tmax are skipped; with AnyHit, returns at
+  // the first hit. `blocks` (the leaves' blocks) is only prefetched.
+  template <bool AnyHit, typename Block, typename Leaf, typename Solo>
+  bool traverse(const BvhRay& ray, float& tmax, const Block* blocks, Leaf&& leaf, Solo&& solo) const;
 
  private:
   friend class BvhBuilder;
@@ -99,8 +106,8 @@ class Bvh {
   Bounds3f bounds_;
 };
 
-template <bool AnyHit, typename Block, typename Leaf>
-bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&& leaf) const {
+template <bool AnyHit, typename Block, typename Leaf, typename Solo>
+bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&& leaf, Solo&& solo) const {
   using simd::f8;
   if (root_ == kNoRoot) return false;
   const BvhRay ray = ray_in;  // a local copy the compiler can keep in registers
@@ -118,7 +125,8 @@ bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&
   bool found = false;
   while (true) {
     if (bvh_ref::is_leaf(ref)) {
-      if (leaf(bvh_ref::first_block(ref), bvh_ref::block_count(ref))) {
+      const uint32_t i = bvh_ref::index(ref);
+      if (bvh_ref::is_solo(ref) ? solo(i) : leaf(i, bvh_ref::block_count(ref))) {
         found = true;
         if constexpr (AnyHit) return true;
       }
@@ -146,8 +154,8 @@ bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&
         // Several: fetch them all now, so that memory works while the nearest is traversed.
         for (uint32_t m = mask; m; m &= m - 1) {
           const uint32_t c = node.child[std::countr_zero(m)];
-          if (bvh_ref::is_leaf(c)) prefetch(&blocks[bvh_ref::first_block(c)], sizeof(Block));
-          else prefetch(&nodes_[c], sizeof(BvhNode));
+          if (!bvh_ref::is_leaf(c)) prefetch(&nodes_[c], sizeof(BvhNode));
+          else if (!bvh_ref::is_solo(c)) prefetch(&blocks[bvh_ref::index(c)], sizeof(Block));
         }
         if constexpr (AnyHit) {  // any hit will do: no order, no distances to keep
           ref = node.child[i];

@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "accel/bvh.h"
+#include "base/error.h"
 
 namespace prism {
 
@@ -50,7 +51,10 @@ struct PrimRef {
 struct Range {
   uint32_t begin, end;
   Box bounds, centroids;
+  uint32_t solos = 0;  // how many of them need a leaf of their own
   uint32_t size() const { return end - begin; }
+  // Whether it must be split further: a solo primitive shares no leaf.
+  bool must_split() const { return solos > 0 && size() > 1; }
 };
 
 // Maps a centroid to its bin on each axis.
@@ -192,6 +196,7 @@ class BvhBuilder {
       for (PrimRef* p = b; p != e; ++p) {
         side.bounds.extend(Box{p->lo, p->hi});
         side.centroids.extend(p->centroid2());
+        side.solos += p->prim() >= options_.first_solo;
       }
       return side;
     };
@@ -201,22 +206,22 @@ class BvhBuilder {
   // Builds the subtree over r; returns its reference (a leaf or a TempNode index).
   uint64_t build(const Range& r, int depth) {
     const uint32_t n = r.size();
-    if (n <= uint32_t(options_.block_size)) return temp_leaf(r);
+    if (n <= uint32_t(options_.block_size) && !r.must_split()) return temp_leaf(r);
     Split split = depth < kSahDepth ? find_split(r) : Split{};
     // SAH, per unit of this box's area: a leaf tests every block; a node costs a visit plus the
     // children's blocks, weighted by the chance that a ray through this box enters each child.
     const float leaf_cost = float(blocks(n));
     const float split_cost = options_.traversal_cost + split.cost / std::max(r.bounds.half_area(), 1e-30f);
-    if (n <= max_leaf() && leaf_cost <= split_cost) return temp_leaf(r);
+    if (n <= max_leaf() && leaf_cost <= split_cost && !r.must_split()) return temp_leaf(r);
 
-    // Open the node's largest child until it has eight, or none has more than a block.
+    // Open the node's largest child until it has eight, or none has more than a block (or solos).
     Range child[8] = {r};
     int count = 1;
     while (count < 8) {
       int best = -1;
       float best_key = -1.f;
       for (int c = 0; c < count; ++c) {
-        if (child[c].size() <= uint32_t(options_.block_size)) continue;
+        if (child[c].size() <= uint32_t(options_.block_size) && !child[c].must_split()) continue;
         // Deep nodes open the child with the most primitives, so the depth stays logarithmic.
         const float key = depth < kSahDepth ? child[c].bounds.half_area() : float(child[c].size());
         if (key > best_key) best = c, best_key = key;
@@ -244,7 +249,10 @@ class BvhBuilder {
   uint32_t emit(uint64_t ref, Bvh& bvh, std::vector<uint32_t>& slots) {
     if (ref & kTempLeaf) {
       const uint32_t begin = uint32_t(ref >> 24), n = uint32_t(ref & 0xFFFFFF);
+      const uint32_t prim = refs_[begin].prim();
+      if (prim >= options_.first_solo) return bvh_ref::solo(prim - options_.first_solo);
       const uint32_t first_block = uint32_t(slots.size()) / options_.block_size;
+      if (first_block + blocks(n) > bvh_ref::kMaxIndex) fail("BVH: more than {} leaf blocks", bvh_ref::kMaxIndex);
       for (uint32_t i = 0; i < n; ++i) slots.push_back(refs_[begin + i].prim());
       slots.resize(size_t(first_block + blocks(n)) * options_.block_size, Bvh::kEmptySlot);
       return bvh_ref::leaf(first_block, blocks(n));
@@ -284,6 +292,7 @@ Bvh Bvh::build(std::span<const Bounds3f> prim_bounds, const BvhBuildOptions& opt
     refs.push_back(r);
     root.bounds.extend(Box{r.lo, r.hi});
     root.centroids.extend(r.centroid2());
+    root.solos += i >= options.first_solo;
   }
   root.end = uint32_t(refs.size());
   slots.clear();
