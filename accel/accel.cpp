@@ -17,8 +17,8 @@ bool hittable(const Triangle& v) {
 }
 
 // World-space box of a box under an affine transform, rounded outwards, and padded by a little
-// more than the rounding of a ray transformed into the instance's space, so that the top-level
-// tree never culls an instance that the ray, in object space, would hit.
+// more than the rounding of a ray transformed into the instance's space, so that the world tree
+// never culls an instance that the ray, in object space, would hit.
 Bounds3f transform_bounds(const Transform& m, const Bounds3f& b) {
   Vec3d lo(kInfinity, kInfinity, kInfinity), hi(-kInfinity, -kInfinity, -kInfinity);
   for (int corner = 0; corner < 8; ++corner) {

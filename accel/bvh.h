@@ -48,7 +48,7 @@ constexpr uint32_t index(uint32_t ref) { return ref & kMaxIndex; }  // first blo
 }  // namespace bvh_ref
 
 struct BvhBuildOptions {
-  int block_size = 4;            // primitive slots per leaf block (the SIMD width of the leaf test)
+  int block_size = 1;            // primitive slots per leaf block (the SIMD width of the leaf test)
   float traversal_cost = 1.f;    // SAH: cost of visiting a node, relative to testing one block
   uint32_t first_solo = 0xFFFFFFFF;  // primitives numbered from here on get a solo leaf each
 };

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <memory>
+#include <type_traits>
 
 #include "accel/bvh.h"
 #include "base/error.h"
@@ -113,12 +114,15 @@ class BvhBuilder {
   }
 
  private:
-  // A node as built: eight boxes and children, a leaf being a range of references.
+  // A node as built: eight boxes and children, a leaf being a range of references. (Plain
+  // vectors, without Box's initialisers, so that allocating room for the largest possible tree
+  // touches no memory.)
   struct TempNode {
-    Box box[8];
+    f4 lo[8], hi[8];
     uint64_t child[8];
     int count;
   };
+  static_assert(std::is_trivially_default_constructible_v<TempNode>);
   static constexpr uint64_t kTempLeaf = uint64_t(1) << 63;
   static uint64_t temp_leaf(const Range& r) { return kTempLeaf | uint64_t(r.begin) << 24 | r.size(); }
 
@@ -235,7 +239,7 @@ class BvhBuilder {
     const uint32_t index = node_count_.fetch_add(1);
     TempNode& node = nodes_[index];
     node.count = count;
-    for (int c = 0; c < count; ++c) node.box[c] = child[c].bounds;
+    for (int c = 0; c < count; ++c) node.lo[c] = child[c].bounds.lo, node.hi[c] = child[c].bounds.hi;
     const auto build_child = [&](int c) { node.child[c] = build(child[c], depth + 1); };
     if (n >= kParallelPrims) {
       tbb::parallel_for(0, count, build_child);
@@ -261,7 +265,7 @@ class BvhBuilder {
     const uint32_t index = uint32_t(bvh.nodes_.size());
     bvh.nodes_.emplace_back();
     for (int c = 0; c < 8; ++c) {
-      const Box box = c < temp.count ? temp.box[c] : Box{};
+      const Box box = c < temp.count ? Box{temp.lo[c], temp.hi[c]} : Box{};
       for (int a = 0; a < 3; ++a) {
         bvh.nodes_[index].planes[a][c] = box.lo[a];
         bvh.nodes_[index].planes[a + 3][c] = box.hi[a];
