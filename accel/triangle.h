@@ -7,6 +7,7 @@
 // One implementation, eight triangles at a time: the BVH's leaves store triangles in blocks.
 
 #include <cmath>
+#include <limits>
 
 #include "accel/simd.h"
 #include "base/ray.h"
@@ -54,7 +55,8 @@ struct alignas(32) TriangleBlock {
   }
 };
 
-// The lanes of a block that a ray hits with 0 < t <= tmax (either face), and how.
+// The lanes of a block that a ray hits with 0 < t <= tmax (either face), and how. (t = tmax is
+// let through: the caller breaks ties with the closest hit so far by triangle number.)
 struct BlockHits {
   uint32_t mask = 0;  // bit i: lane i hits
   simd::f8 t, u, v, w, inv_det;
