@@ -1,6 +1,7 @@
 # Prism. On a fresh Debian 12 machine:
 #   make render   installs what is missing, builds (Release), renders the default scene
 #   make test     the same set-up, then the whole test suite
+#   make bench-rays   Prism's BVH against Embree, ray for ray (needs ../shared/tools/raybench built)
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 SPP ?= 64
@@ -9,7 +10,7 @@ SIZE ?= 512
 PACKAGES := cmake make g++ pkg-config libopenexr-dev libopencolorio-dev libtinygltf-dev nlohmann-json3-dev \
             libstb-dev catch2 libtbb-dev libcli11-dev libfmt-dev
 
-.PHONY: all deps build render test clean
+.PHONY: all deps build render test bench-rays clean
 
 all: build
 
@@ -26,6 +27,10 @@ render: build
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+# Prism's BVH against Embree on raybench's ray sets (needs raybench built; see tools/bench_rays.sh).
+bench-rays: build
+	tools/bench_rays.sh
 
 clean:
 	rm -rf $(BUILD_DIR) out

@@ -1,62 +1,197 @@
 #include "accel/accel.h"
 
-#include "accel/triangle.h"
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 
 namespace prism {
 
-Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> instances) {
-  // Flatten every instance into world space (vertices transformed in double, rounded once).
-  std::vector<Triangle> tris;
-  first_prim_.reserve(instances.size());
+namespace {
+
+using Triangle = std::array<Vec3f, 3>;
+
+// A triangle with zero area, or beyond float range, can never be hit; it stays out of the trees.
+bool hittable(const Triangle& v) {
+  const float area = triangle_area(v[0], v[1], v[2]);
+  return area > 0.f && std::isfinite(area);
+}
+
+// World-space box of a box under an affine transform, rounded outwards, and padded by a little
+// more than the rounding of a ray transformed into the instance's space, so that the world tree
+// never culls an instance that the ray, in object space, would hit.
+Bounds3f transform_bounds(const Transform& m, const Bounds3f& b) {
+  Vec3d lo(kInfinity, kInfinity, kInfinity), hi(-kInfinity, -kInfinity, -kInfinity);
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3d p = m.point(Vec3d((corner & 1 ? b.hi : b.lo).x, (corner & 2 ? b.hi : b.lo).y,
+                                  (corner & 4 ? b.hi : b.lo).z));
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+  }
+  const double magnitude = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x),
+                                     std::abs(hi.y), std::abs(hi.z)});
+  const double pad = magnitude * 0x1p-20;
+  Bounds3f out;
+  for (int a = 0; a < 3; ++a) {
+    out.lo[a] = next_float_down(float(lo[a] - pad));
+    out.hi[a] = next_float_up(float(hi[a] + pad));
+  }
+  return out;
+}
+
+}  // namespace
+
+Accel::TriangleTree::TriangleTree(const std::vector<Triangle>& triangles, std::span<const uint32_t> ids,
+                                  std::span<const Bounds3f> solo_bounds) {
+  std::vector<Bounds3f> bounds(triangles.size());
+  tbb::parallel_for(size_t(0), triangles.size(), [&](size_t i) {
+    if (!hittable(triangles[i])) return;
+    for (const Vec3f& v : triangles[i]) bounds[i].extend(v);
+  });
+  bounds.insert(bounds.end(), solo_bounds.begin(), solo_bounds.end());
+  std::vector<uint32_t> slots;
+  bvh = Bvh::build(bounds, {.block_size = TriangleBlock::kLanes, .first_solo = uint32_t(triangles.size())}, slots);
+  blocks.resize(slots.size() / TriangleBlock::kLanes);
+  tbb::parallel_for(size_t(0), blocks.size(), [&](size_t b) {
+    for (int lane = 0; lane < TriangleBlock::kLanes; ++lane) {
+      const uint32_t s = slots[b * TriangleBlock::kLanes + lane];
+      if (s != Bvh::kEmptySlot) blocks[b].set(lane, triangles[s][0], triangles[s][1], triangles[s][2], ids[s]);
+    }
+  });
+}
+
+Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> instances, const AccelOptions& options)
+    : brute_force_(options.brute_force) {
+  std::vector<uint32_t> users(meshes.size(), 0);
+  for (const AccelInstance& inst : instances) ++users[inst.mesh];
+  const auto shared = [&](const AccelInstance& inst) { return users[inst.mesh] > 1 && !options.flatten_instances; };
+  const auto triangles_of = [&](uint32_t mesh) { return uint32_t(meshes[mesh].indices.size() / 3); };
+
+  // Every triangle of the unshared instances, in world space, numbered globally. Vertices are
+  // transformed in double and rounded once (as World computes hit points from them).
+  std::vector<uint32_t> world_first(instances.size());
+  size_t world_count = 0;
   for (uint32_t i = 0; i < instances.size(); ++i) {
-    first_prim_.push_back(uint32_t(tris.size()));
+    first_prim_.push_back(uint32_t(triangle_count_));
+    triangle_count_ += triangles_of(instances[i].mesh);
+    world_first[i] = uint32_t(world_count);
+    if (!shared(instances[i])) world_count += triangles_of(instances[i].mesh);
+  }
+  std::vector<Triangle> world_triangles(world_count);
+  std::vector<uint32_t> world_ids(world_count);
+  tbb::parallel_for(size_t(0), instances.size(), [&](size_t i) {
+    if (shared(instances[i])) return;
     const AccelMesh& mesh = meshes[instances[i].mesh];
     const Transform& m = instances[i].to_world;
-    for (uint32_t p = 0; p < mesh.indices.size() / 3; ++p) {
-      Vec3f v[3];
-      for (int k = 0; k < 3; ++k) v[k] = Vec3f(m.point(Vec3d(mesh.positions[mesh.indices[3 * p + k]])));
-      tris.push_back({v[0], v[1], v[2], i, p});
+    for (uint32_t p = 0; p < triangles_of(instances[i].mesh); ++p) {
+      for (int k = 0; k < 3; ++k)
+        world_triangles[world_first[i] + p][k] = Vec3f(m.point(Vec3d(mesh.positions[mesh.indices[3 * p + k]])));
+      world_ids[world_first[i] + p] = first_prim_[i] + p;
+    }
+  });
+
+  // One tree per shared mesh, in object space; each instance of it a solo leaf of the world tree.
+  std::vector<int> tree_of(meshes.size(), -1);
+  std::vector<Bounds3f> placement_bounds;
+  for (uint32_t i = 0; i < instances.size(); ++i) {
+    const uint32_t mesh = instances[i].mesh;
+    if (!shared(instances[i])) continue;
+    if (tree_of[mesh] < 0) {
+      tree_of[mesh] = int(mesh_trees_.size());
+      std::vector<Triangle> triangles(triangles_of(mesh));
+      std::vector<uint32_t> ids(triangles.size());
+      for (uint32_t p = 0; p < triangles.size(); ++p) {
+        for (int k = 0; k < 3; ++k) triangles[p][k] = meshes[mesh].positions[meshes[mesh].indices[3 * p + k]];
+        ids[p] = p;
+      }
+      mesh_trees_.emplace_back(triangles, ids);
+    }
+    const Bvh& tree = mesh_trees_[tree_of[mesh]].bvh;
+    placements_.push_back({i, uint32_t(tree_of[mesh]), inverse(instances[i].to_world)});
+    placement_bounds.push_back(tree.empty() ? Bounds3f{} : transform_bounds(instances[i].to_world, tree.bounds()));
+  }
+  world_ = TriangleTree(world_triangles, world_ids, placement_bounds);
+}
+
+struct Accel::Closest {
+  float t;           // the closest hit so far (ray.tmax before any)
+  uint32_t id = 0;   // its global triangle number: 0 before any, so that t = tmax never wins
+  uint32_t instance = kWorld;
+  TriangleHit hit{};
+};
+
+template <bool AnyHit>
+bool Accel::test_blocks(const TriangleTree& tree, uint32_t first, uint32_t count, uint32_t instance,
+                        const WatertightRay& ray, Closest& closest) const {
+  const uint32_t base = instance == kWorld ? 0 : first_prim_[instance];
+  bool found = false;
+  for (uint32_t b = first; b < first + count; ++b) {
+    const TriangleBlock& block = tree.blocks[b];
+    const BlockHits hits = intersect_triangles(ray, block, closest.t);
+    for (uint32_t m = hits.mask; m; m &= m - 1) {
+      const int lane = std::countr_zero(m);
+      const uint32_t id = base + block.id[lane];
+      // The order of (t, id) decides, so that ties go the same way whatever the traversal order.
+      if (hits.t[lane] < closest.t || (hits.t[lane] == closest.t && id < closest.id)) {
+        if constexpr (AnyHit) return true;
+        closest = {hits.t[lane], id, instance, hits.lane(lane)};
+        found = true;
+      }
     }
   }
-  std::vector<Bounds3f> bounds(tris.size());
-  for (size_t i = 0; i < tris.size(); ++i) {
-    bounds[i].extend(tris[i].v0);
-    bounds[i].extend(tris[i].v1);
-    bounds[i].extend(tris[i].v2);
-    // A triangle with zero area can never be hit; leave it out of the tree.
-    if (triangle_area(tris[i].v0, tris[i].v1, tris[i].v2) == 0.f) bounds[i] = Bounds3f{};
+  return found;
+}
+
+template <bool AnyHit>
+bool Accel::trace(const Ray& ray, Closest& closest) const {
+  // The world tree's leaves, and its solo leaves: the instances of shared meshes.
+  const WatertightRay world_ray(ray);
+  const auto leaf = [&](uint32_t first, uint32_t count) {
+    return test_blocks<AnyHit>(world_, first, count, kWorld, world_ray, closest);
+  };
+  const auto enter = [&](uint32_t placement) {
+    const Placement& p = placements_[placement];
+    const TriangleTree& tree = mesh_trees_[p.tree];
+    // In the mesh's space the direction is not unit length, so t stays the world-space distance.
+    const Ray object_ray{Vec3f(p.to_object.point(Vec3d(ray.o))), Vec3f(p.to_object.vector(Vec3d(ray.d))), ray.tmax};
+    const WatertightRay wr(object_ray);
+    const auto mesh_leaf = [&](uint32_t first, uint32_t count) {
+      return test_blocks<AnyHit>(tree, first, count, p.instance, wr, closest);
+    };
+    if (brute_force_) return mesh_leaf(0, uint32_t(tree.blocks.size()));
+    return tree.bvh.traverse<AnyHit>(BvhRay(object_ray), closest.t, tree.blocks.data(), mesh_leaf,
+                                     [](uint32_t) { return false; });  // mesh trees have no solo leaves
+  };
+  if (brute_force_) {
+    bool found = leaf(0, uint32_t(world_.blocks.size()));
+    for (uint32_t p = 0; p < placements_.size(); ++p) {
+      if constexpr (AnyHit)
+        if (found) return true;
+      found |= enter(p);
+    }
+    return found;
   }
-  bvh_ = Bvh::build(bounds);
-  triangles_.reserve(bvh_.prim_order().size());
-  for (uint32_t p : bvh_.prim_order()) triangles_.push_back(tris[p]);
+  return world_.bvh.traverse<AnyHit>(BvhRay(ray), closest.t, world_.blocks.data(), leaf, enter);
 }
 
 bool Accel::intersect(const Ray& ray, AccelHit& hit) const {
-  const WatertightRay wr(ray);
-  float tmax = ray.tmax;
-  return bvh_.traverse<false>(ray, tmax, [&](uint32_t i, float& t) {
-    const Triangle& tri = triangles_[i];
-    TriangleHit th;
-    if (!intersect_triangle(wr, tri.v0, tri.v1, tri.v2, t, th)) return false;
-    t = th.t;
-    hit = {th.t, th.b0, th.b1, th.b2, tri.instance, tri.prim};
-    return true;
-  });
+  Closest closest{ray.tmax};
+  if (!trace<false>(ray, closest)) return false;
+  uint32_t instance = closest.instance;
+  if (instance == kWorld)
+    instance = uint32_t(std::upper_bound(first_prim_.begin(), first_prim_.end(), closest.id) - first_prim_.begin() - 1);
+  const TriangleHit& h = closest.hit;
+  hit = {h.t, h.b0, h.b1, h.b2, instance, closest.id - first_prim_[instance]};
+  return true;
 }
 
 bool Accel::occluded(const Ray& ray) const {
-  const WatertightRay wr(ray);
-  float tmax = ray.tmax;
-  return bvh_.traverse<true>(ray, tmax, [&](uint32_t i, float& t) {
-    const Triangle& tri = triangles_[i];
-    TriangleHit th;
-    return intersect_triangle(wr, tri.v0, tri.v1, tri.v2, t, th);
-  });
+  Closest closest{ray.tmax};
+  return trace<true>(ray, closest);
 }
 
 size_t Accel::memory_bytes() const {
-  return bvh_.nodes().size() * sizeof(BvhNode) + triangles_.size() * sizeof(Triangle) +
-         bvh_.prim_order().size() * sizeof(uint32_t) + first_prim_.size() * sizeof(uint32_t);
+  size_t bytes = world_.memory_bytes() + placements_.size() * sizeof(Placement) + first_prim_.size() * sizeof(uint32_t);
+  for (const TriangleTree& t : mesh_trees_) bytes += t.memory_bytes();
+  return bytes;
 }
 
 }  // namespace prism

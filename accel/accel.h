@@ -1,12 +1,20 @@
 #pragma once
 // The ray-scene queries of Prism: closest hit and any hit against triangle meshes placed by
 // instances. Knows nothing of materials or spectra.
+//
+// Two levels where they pay: the instances of a mesh that no other instance uses are copied
+// into one world-space BVH (the fastest to trace); a mesh shared by several instances gets one
+// BVH in its own space, and each of its instances enters the world BVH as a leaf of its own,
+// which the ray crosses into the mesh's space through the instance's transform. Queries are
+// exact functions of the geometry: the closest hit is the one with the smallest t, and among
+// equally close ones the smallest global_prim, whatever the trees' shapes or visiting order.
 
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "accel/bvh.h"
+#include "accel/triangle.h"
 #include "base/transform.h"
 
 namespace prism {
@@ -21,6 +29,13 @@ struct AccelInstance {
   Transform to_world;
 };
 
+struct AccelOptions {
+  bool flatten_instances = false;  // copy shared meshes into the world-space BVH too
+  // Test every triangle for every query, without the trees: the reference the tests hold the
+  // BVH to, bit for bit (same triangles in the same spaces, same triangle test).
+  bool brute_force = false;
+};
+
 struct AccelHit {
   float t;
   float b0, b1, b2;   // barycentrics of the triangle's three vertices
@@ -31,25 +46,49 @@ struct AccelHit {
 class Accel {
  public:
   Accel() = default;
-  Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> instances);
+  Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> instances, const AccelOptions& options = {});
 
-  bool intersect(const Ray& ray, AccelHit& hit) const;  // closest hit with t < ray.tmax
-  bool occluded(const Ray& ray) const;                  // any hit with t < ray.tmax
+  bool intersect(const Ray& ray, AccelHit& hit) const;  // closest hit with 0 < t < ray.tmax
+  bool occluded(const Ray& ray) const;                  // any hit with 0 < t < ray.tmax
 
   // Triangles numbered instance by instance, each instance's triangles in mesh order.
   uint32_t global_prim(const AccelHit& hit) const { return first_prim_[hit.instance] + hit.prim; }
-  size_t triangle_count() const { return triangles_.size(); }
+  size_t triangle_count() const { return triangle_count_; }
   size_t memory_bytes() const;
-  Bounds3f bounds() const { return bvh_.bounds(); }
+  Bounds3f bounds() const { return world_.bvh.bounds(); }
 
  private:
-  struct Triangle {
-    Vec3f v0, v1, v2;  // world space
-    uint32_t instance, prim;
+  static constexpr uint32_t kWorld = 0xFFFFFFFF;  // "instance" of triangles in the world tree
+  // A BVH whose leaves are blocks of triangles; `id`s are global triangle numbers in the world
+  // tree and triangle numbers within the mesh in a mesh's tree. The world tree's solo leaves
+  // are its instances of shared meshes.
+  struct TriangleTree {
+    Bvh bvh;
+    std::vector<TriangleBlock, HugePageAllocator<TriangleBlock>> blocks;
+    TriangleTree() = default;
+    TriangleTree(const std::vector<std::array<Vec3f, 3>>& triangles, std::span<const uint32_t> ids,
+                 std::span<const Bounds3f> solo_bounds = {});
+    size_t memory_bytes() const { return bvh.memory_bytes() + blocks.size() * sizeof(TriangleBlock); }
   };
-  Bvh bvh_;
-  std::vector<Triangle> triangles_;  // in BVH leaf order
+  // An instance of a shared mesh.
+  struct Placement {
+    uint32_t instance;
+    uint32_t tree;  // into mesh_trees_
+    Transform to_object;
+  };
+  struct Closest;
+  template <bool AnyHit>
+  bool trace(const Ray& ray, Closest& closest) const;
+  template <bool AnyHit>
+  bool test_blocks(const TriangleTree& tree, uint32_t first, uint32_t count, uint32_t instance,
+                   const WatertightRay& ray, Closest& closest) const;
+
+  TriangleTree world_;
+  std::vector<TriangleTree> mesh_trees_;
+  std::vector<Placement> placements_;  // the world tree's solo leaves
   std::vector<uint32_t> first_prim_;
+  size_t triangle_count_ = 0;
+  bool brute_force_ = false;
 };
 
 }  // namespace prism

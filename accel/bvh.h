@@ -1,96 +1,205 @@
 #pragma once
-// Bounding volume hierarchy over any primitives given by their bounds: built by binned SAH
-// (Wald 2007, "On fast Construction of SAH-based Bounding Volume Hierarchies"), stored as flat
-// depth-first nodes (left child follows its parent), traversed front to back.
+// Bounding volume hierarchy over primitives given by their bounds, with 8-wide nodes whose eight
+// child boxes one SIMD slab test checks at once (Wald, Benthin & Boulos 2008, "Getting rid of
+// packets"; Dammertz et al. 2008, "Shallow bounding volume hierarchies"). Built by binned SAH
+// (Wald 2007), each node's children by splitting its largest child until there are eight, as
+// Embree does (Wald et al. 2014). Leaves are runs of blocks of a fixed number of primitive slots,
+// so that a leaf's primitives can be tested together too. Traversal visits children nearest first.
 
+#include <bit>
+#include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <span>
+#include <utility>
 #include <vector>
 
+#include "accel/simd.h"
 #include "base/bounds.h"
+#include "base/huge_page_allocator.h"
 #include "base/ray.h"
 
 namespace prism {
 
-struct BvhNode {
-  Bounds3f bounds;
-  uint32_t index;  // leaf: first entry in prim_order(); interior: the second child's node
-  uint16_t count;  // primitives in a leaf; 0 for interior nodes
-  uint16_t axis;   // interior: split axis (children ordered by it)
+struct alignas(64) BvhNode {
+  static constexpr int kWidth = 8;
+  // The children's boxes, lane by lane: lo x, y, z, then hi x, y, z. Unused lanes hold an empty
+  // box (lo = +∞, hi = −∞), which no ray enters.
+  float planes[6][kWidth];
+  uint32_t child[kWidth];
+};
+
+// A child reference: an inner node's index, or a leaf: a run of blocks, or one primitive that the
+// BVH's owner handles itself ("solo", such as an instance in Accel's world tree).
+namespace bvh_ref {
+inline constexpr uint32_t kLeaf = 1u << 31;
+inline constexpr int kCountShift = 27;
+inline constexpr uint32_t kSolo = 15;  // this block count marks a solo leaf
+inline constexpr uint32_t kMaxLeafBlocks = kSolo - 1;
+inline constexpr uint32_t kMaxIndex = (1u << kCountShift) - 1;
+constexpr uint32_t leaf(uint32_t first_block, uint32_t blocks) {
+  return kLeaf | (blocks - 1) << kCountShift | first_block;
+}
+constexpr uint32_t solo(uint32_t index) { return kLeaf | (kSolo - 1) << kCountShift | index; }
+constexpr bool is_leaf(uint32_t ref) { return ref & kLeaf; }
+constexpr uint32_t block_count(uint32_t ref) { return ((ref & ~kLeaf) >> kCountShift) + 1; }
+constexpr bool is_solo(uint32_t ref) { return block_count(ref) == kSolo; }
+constexpr uint32_t index(uint32_t ref) { return ref & kMaxIndex; }  // first block, or the solo primitive
+}  // namespace bvh_ref
+
+struct BvhBuildOptions {
+  int block_size = 1;            // primitive slots per leaf block (the SIMD width of the leaf test)
+  float traversal_cost = 1.f;    // SAH: cost of visiting a node, relative to testing one block
+  uint32_t first_solo = 0xFFFFFFFF;  // primitives numbered from here on get a solo leaf each
+};
+
+// Per-ray constants of the slab test.
+struct BvhRay {
+  simd::f8 o[3], inv_near[3], inv_far[3];
+  size_t near[3], far[3];  // per axis, byte offsets in BvhNode::planes of the rows the ray enters and leaves by
+
+  explicit BvhRay(const Ray& ray) {
+    // The near distance is rounded down and the far one up, by more than the four roundings of
+    // (p − o)·(1/d)·c, so that no box the ray touches is ever missed (pbrt-v4 §6.8.2).
+    constexpr float kDown = 1.f - 2.f * gamma(5), kUp = 1.f + 2.f * gamma(5);
+    for (int a = 0; a < 3; ++a) {
+      const float inv = 1.f / ray.d[a];
+      o[a] = simd::f8{} + ray.o[a];
+      inv_near[a] = simd::f8{} + inv * kDown;
+      inv_far[a] = simd::f8{} + inv * kUp;
+      near[a] = (std::signbit(inv) ? a + 3 : a) * sizeof(BvhNode::planes[0]);
+      far[a] = (std::signbit(inv) ? a : a + 3) * sizeof(BvhNode::planes[0]);
+    }
+  }
 };
 
 class Bvh {
  public:
+  static constexpr uint32_t kEmptySlot = 0xFFFFFFFF;
+
   Bvh() = default;
-  static Bvh build(std::span<const Bounds3f> prim_bounds, int max_leaf_size = 4);
+  // Builds over the primitives whose bounds are not empty. `slots` receives them in the order
+  // the leaves list them: block after block of options.block_size slots, unused ones kEmptySlot.
+  // Solo primitives are not in `slots`: their leaves name them (minus options.first_solo).
+  static Bvh build(std::span<const Bounds3f> prim_bounds, const BvhBuildOptions& options,
+                   std::vector<uint32_t>& slots);
 
-  const std::vector<BvhNode>& nodes() const { return nodes_; }
-  // Primitive indices in leaf order; leaf nodes point into this array.
-  const std::vector<uint32_t>& prim_order() const { return prim_order_; }
-  Bounds3f bounds() const { return nodes_.empty() ? Bounds3f{} : nodes_[0].bounds; }
+  bool empty() const { return root_ == kNoRoot; }
+  Bounds3f bounds() const { return bounds_; }
+  size_t memory_bytes() const { return nodes_.size() * sizeof(BvhNode); }
 
-  // Visits the leaves a ray may hit, nearest first. For each primitive slot i in a leaf,
-  // calls hit(i, tmax), which returns true if it hit the primitive (and then lowers tmax).
-  // With AnyHit, returns at the first hit. Returns whether anything was hit.
-  template <bool AnyHit, typename Hit>
-  bool traverse(const Ray& ray, float& tmax, Hit&& hit) const;
+  // Visits the leaves a ray may hit, nearest first: calls leaf(first_block, block_count), or
+  // solo(index) for a solo leaf, which tests the leaf's primitives, lowers tmax to any closer hit
+  // and returns whether it hit. Boxes entered beyond tmax are skipped; with AnyHit, returns at
+  // the first hit. `blocks` (the leaves' blocks) is only prefetched.
+  template <bool AnyHit, typename Block, typename Leaf, typename Solo>
+  bool traverse(const BvhRay& ray, float& tmax, const Block* blocks, Leaf&& leaf, Solo&& solo) const;
 
  private:
-  std::vector<BvhNode> nodes_;
-  std::vector<uint32_t> prim_order_;
+  friend class BvhBuilder;
+  static constexpr uint32_t kNoRoot = 0xFFFFFFFF;
+  // Deep enough for the builder's depth limit (it switches to median splits), 7 entries a level.
+  static constexpr int kStackSize = 7 * 64;
+
+  std::vector<BvhNode, HugePageAllocator<BvhNode>> nodes_;
+  uint32_t root_ = kNoRoot;
+  Bounds3f bounds_;
 };
 
-// Slab test; the far distance is widened by 2γ₃ so rounding never loses a box the ray grazes
-// (pbrt-v4 §6.8.2). NaNs from 0·∞ (ray in a slab plane) drop out of the min/max.
-inline bool intersect_box(const Bounds3f& b, const Vec3f& o, const Vec3f& inv_d, float tmax) {
-  float t0 = 0.f, t1 = tmax;
-  for (int i = 0; i < 3; ++i) {
-    float tn = (b.lo[i] - o[i]) * inv_d[i];
-    float tf = (b.hi[i] - o[i]) * inv_d[i];
-    if (tn > tf) std::swap(tn, tf);
-    tf *= 1.f + 2.f * gamma(3);
-    t0 = tn > t0 ? tn : t0;
-    t1 = tf < t1 ? tf : t1;
-    if (t0 > t1) return false;
-  }
-  return true;
-}
-
-template <bool AnyHit, typename Hit>
-bool Bvh::traverse(const Ray& ray, float& tmax, Hit&& hit) const {
-  if (nodes_.empty()) return false;
-  const Vec3f inv_d(1.f / ray.d.x, 1.f / ray.d.y, 1.f / ray.d.z);
-  const bool negative[3] = {inv_d.x < 0, inv_d.y < 0, inv_d.z < 0};
-  uint32_t stack[64];
+template <bool AnyHit, typename Block, typename Leaf, typename Solo>
+bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&& leaf, Solo&& solo) const {
+  using simd::f8;
+  if (root_ == kNoRoot) return false;
+  const BvhRay ray = ray_in;  // a local copy the compiler can keep in registers
+  const auto prefetch = [](const void* p, size_t bytes) {
+    for (size_t offset = 0; offset < bytes; offset += 64) __builtin_prefetch(static_cast<const char*>(p) + offset);
+    __builtin_prefetch(static_cast<const char*>(p) + bytes - 1);
+  };
+  struct Entry {
+    uint32_t ref;
+    float t;  // where the ray enters the box
+  };
+  Entry stack[kStackSize];
   int top = 0;
-  uint32_t current = 0;
+  uint32_t ref = root_;
   bool found = false;
   while (true) {
-    const BvhNode& node = nodes_[current];
-    if (intersect_box(node.bounds, ray.o, inv_d, tmax)) {
-      if (node.count > 0) {
-        for (uint32_t i = node.index; i < node.index + node.count; ++i) {
-          if (hit(i, tmax)) {
-            found = true;
-            if constexpr (AnyHit) return true;
-          }
+    if (bvh_ref::is_leaf(ref)) {
+      const uint32_t i = bvh_ref::index(ref);
+      if (bvh_ref::is_solo(ref) ? solo(i) : leaf(i, bvh_ref::block_count(ref))) {
+        found = true;
+        if constexpr (AnyHit) return true;
+      }
+    } else {
+      const BvhNode& node = nodes_[ref];
+      const char* planes = reinterpret_cast<const char*>(node.planes);
+      const auto slab = [&](size_t offset, int a, const f8& inv) {
+        return (simd::load<f8>(reinterpret_cast<const float*>(planes + offset)) - ray.o[a]) * inv;
+      };
+      const f8 t_enter = simd::max_ignore_nan(
+          slab(ray.near[0], 0, ray.inv_near[0]),
+          simd::max_ignore_nan(slab(ray.near[1], 1, ray.inv_near[1]),
+                               simd::max_ignore_nan(slab(ray.near[2], 2, ray.inv_near[2]), f8{})));
+      const f8 t_leave = simd::min_ignore_nan(
+          slab(ray.far[0], 0, ray.inv_far[0]),
+          simd::min_ignore_nan(slab(ray.far[1], 1, ray.inv_far[1]),
+                               simd::min_ignore_nan(slab(ray.far[2], 2, ray.inv_far[2]), f8{} + tmax)));
+      uint32_t mask = simd::bits(t_enter <= t_leave);
+      if (mask) {
+        int i = std::countr_zero(mask);
+        if (!(mask & (mask - 1))) {  // one child: straight down
+          ref = node.child[i];
+          continue;
         }
-      } else {
-        // Visit the child on the ray's side of the split first.
-        if (negative[node.axis]) {
-          stack[top++] = current + 1;
-          current = node.index;
-        } else {
-          stack[top++] = node.index;
-          current = current + 1;
+        // Several: fetch them all now, so that memory works while the nearest is traversed.
+        for (uint32_t m = mask; m; m &= m - 1) {
+          const uint32_t c = node.child[std::countr_zero(m)];
+          if (!bvh_ref::is_leaf(c)) prefetch(&nodes_[c], sizeof(BvhNode));
+          else if (!bvh_ref::is_solo(c)) prefetch(&blocks[bvh_ref::index(c)], sizeof(Block));
         }
+        if constexpr (AnyHit) {  // any hit will do: no order, no distances to keep
+          ref = node.child[i];
+          for (mask &= mask - 1; mask; mask &= mask - 1) stack[top++].ref = node.child[std::countr_zero(mask)];
+          continue;
+        }
+        alignas(32) float t[8];
+        std::memcpy(t, &t_enter, sizeof t);
+        mask &= mask - 1;
+        int j = std::countr_zero(mask);
+        mask &= mask - 1;
+        if (!mask) {  // two children: the nearer now, the other later
+          if (t[j] < t[i]) std::swap(i, j);
+          stack[top++] = {node.child[j], t[j]};
+          ref = node.child[i];
+          continue;
+        }
+        // More: push all, sort them far to near (insertion sort: at most eight), take the nearest.
+        Entry* pushed = stack + top;
+        int n = 0;
+        for (uint32_t m = mask | 1u << i | 1u << j; m; m &= m - 1) {
+          const int c = std::countr_zero(m);
+          const Entry e{node.child[c], t[c]};
+          int k = n++;
+          for (; k > 0 && pushed[k - 1].t < e.t; --k) pushed[k] = pushed[k - 1];
+          pushed[k] = e;
+        }
+        top += n - 1;
+        ref = pushed[n - 1].ref;
         continue;
       }
     }
-    if (top == 0) break;
-    current = stack[--top];
+    // Next: the nearest box still pending that starts before tmax.
+    if constexpr (AnyHit) {
+      if (top == 0) return false;
+      ref = stack[--top].ref;
+      continue;
+    }
+    do {
+      if (top == 0) return found;
+      --top;
+    } while (stack[top].t > tmax);
+    ref = stack[top].ref;
   }
-  return found;
 }
 
 }  // namespace prism

@@ -4,10 +4,13 @@
 // origin, permute so the ray's largest axis is z, shear so the ray is +z), where the 2D edge
 // functions of a shared edge are computed identically for both triangles. Rays through an edge
 // or vertex therefore hit at least one of the triangles sharing it; none slip through.
+// One implementation, eight triangles at a time: the BVH's leaves store triangles in blocks.
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include "accel/simd.h"
 #include "base/ray.h"
 
 namespace prism {
@@ -34,52 +37,87 @@ struct TriangleHit {
   float b0, b1, b2;  // barycentric weights of v0, v1, v2
 };
 
-// Returns true and fills hit for an intersection with 0 < t < tmax (either face).
-inline bool intersect_triangle(const WatertightRay& r, const Vec3f& v0, const Vec3f& v1, const Vec3f& v2, float tmax,
-                               TriangleHit& hit) {
-  const Vec3f a = v0 - r.o, b = v1 - r.o, c = v2 - r.o;
-  const float ax = a[r.kx] - r.sx * a[r.kz], ay = a[r.ky] - r.sy * a[r.kz];
-  const float bx = b[r.kx] - r.sx * b[r.kz], by = b[r.ky] - r.sy * b[r.kz];
-  const float cx = c[r.kx] - r.sx * c[r.kz], cy = c[r.ky] - r.sy * c[r.kz];
+// Eight triangles, stored lane by lane. Unused lanes hold NaN vertices, which never hit.
+struct alignas(32) TriangleBlock {
+  static constexpr int kLanes = 8;
+  simd::f8 v[3][3];      // v[vertex][axis]
+  uint32_t id[kLanes];   // the owner's number for each triangle
+
+  TriangleBlock() {
+    for (auto& vertex : v)
+      for (auto& axis : vertex) axis = simd::f8{} + std::numeric_limits<float>::quiet_NaN();
+    for (uint32_t& i : id) i = 0;
+  }
+  void set(int lane, const Vec3f& v0, const Vec3f& v1, const Vec3f& v2, uint32_t triangle_id) {
+    const Vec3f* vs[3] = {&v0, &v1, &v2};
+    for (int k = 0; k < 3; ++k)
+      for (int axis = 0; axis < 3; ++axis) v[k][axis][lane] = (*vs[k])[axis];
+    id[lane] = triangle_id;
+  }
+};
+
+// The lanes of a block that a ray hits with 0 < t <= tmax (either face), and how. (t = tmax is
+// let through: the caller breaks ties with the closest hit so far by triangle number.)
+struct BlockHits {
+  uint32_t mask = 0;  // bit i: lane i hits
+  simd::f8 t, u, v, w, inv_det;
+
+  TriangleHit lane(int i) const { return {t[i], u[i] * inv_det[i], v[i] * inv_det[i], w[i] * inv_det[i]}; }
+};
+
+inline BlockHits intersect_triangles(const WatertightRay& r, const TriangleBlock& tri, float tmax) {
+  using simd::f8, simd::i8, simd::d8;
+  // Vertices relative to the origin, in the permuted axes.
+  const f8 ox = f8{} + r.o[r.kx], oy = f8{} + r.o[r.ky], oz = f8{} + r.o[r.kz];
+  const f8 a_x = tri.v[0][r.kx] - ox, a_y = tri.v[0][r.ky] - oy, a_z = tri.v[0][r.kz] - oz;
+  const f8 b_x = tri.v[1][r.kx] - ox, b_y = tri.v[1][r.ky] - oy, b_z = tri.v[1][r.kz] - oz;
+  const f8 c_x = tri.v[2][r.kx] - ox, c_y = tri.v[2][r.ky] - oy, c_z = tri.v[2][r.kz] - oz;
+  // Sheared into the ray's frame.
+  const f8 ax = a_x - r.sx * a_z, ay = a_y - r.sy * a_z;
+  const f8 bx = b_x - r.sx * b_z, by = b_y - r.sy * b_z;
+  const f8 cx = c_x - r.sx * c_z, cy = c_y - r.sy * c_z;
 
   // Scaled barycentrics: 2D edge functions of the edges opposite v0, v1, v2.
-  float u = cx * by - cy * bx;
-  float v = ax * cy - ay * cx;
-  float w = bx * ay - by * ax;
-  if (u == 0.f || v == 0.f || w == 0.f) {  // exactly on an edge in float: decide in double
-    u = float(double(cx) * by - double(cy) * bx);
-    v = float(double(ax) * cy - double(ay) * cx);
-    w = float(double(bx) * ay - double(by) * ax);
+  f8 u = cx * by - cy * bx;
+  f8 v = ax * cy - ay * cx;
+  f8 w = bx * ay - by * ax;
+  const i8 on_edge = (u == 0.f) | (v == 0.f) | (w == 0.f);
+  if (simd::bits(on_edge)) {  // exactly on an edge in float: decide in double
+    const auto dbl = [](f8 x) { return __builtin_convertvector(x, d8); };
+    const f8 ud = __builtin_convertvector(dbl(cx) * dbl(by) - dbl(cy) * dbl(bx), f8);
+    const f8 vd = __builtin_convertvector(dbl(ax) * dbl(cy) - dbl(ay) * dbl(cx), f8);
+    const f8 wd = __builtin_convertvector(dbl(bx) * dbl(ay) - dbl(by) * dbl(ax), f8);
+    u = on_edge ? ud : u;
+    v = on_edge ? vd : v;
+    w = on_edge ? wd : w;
   }
-  if ((u < 0.f || v < 0.f || w < 0.f) && (u > 0.f || v > 0.f || w > 0.f)) return false;
-  const float det = u + v + w;
-  if (det == 0.f) return false;
+  const i8 outside = ((u < 0.f) | (v < 0.f) | (w < 0.f)) & ((u > 0.f) | (v > 0.f) | (w > 0.f));
+  const f8 det = u + v + w;
 
-  // Scaled distance T = det · t, compared with det · tmax without dividing.
-  const float az = r.sz * a[r.kz], bz = r.sz * b[r.kz], cz = r.sz * c[r.kz];
-  const float t_scaled = u * az + v * bz + w * cz;
-  if (det < 0.f && (t_scaled >= 0.f || t_scaled < tmax * det)) return false;
-  if (det > 0.f && (t_scaled <= 0.f || t_scaled > tmax * det)) return false;
+  // Scaled distance T = det · t.
+  const f8 az = r.sz * a_z, bz = r.sz * b_z, cz = r.sz * c_z;
+  const f8 t_scaled = u * az + v * bz + w * cz;
+  BlockHits hits;
+  hits.inv_det = 1.f / det;
+  hits.t = t_scaled * hits.inv_det;
+  hits.u = u, hits.v = v, hits.w = w;
 
-  const float inv_det = 1.f / det;
-  hit = {t_scaled * inv_det, u * inv_det, v * inv_det, w * inv_det};
-
-  // t must exceed its own rounding error bound δt, or a ray leaving a surface point could hit
-  // that surface again at a tiny t (pbrt-v4 §6.8.4, from the error of each step above).
-  const float max_z = std::max({std::abs(az), std::abs(bz), std::abs(cz)});
-  const float max_x = std::max({std::abs(ax), std::abs(bx), std::abs(cx)});
-  const float max_y = std::max({std::abs(ay), std::abs(by), std::abs(cy)});
-  const float delta_z = gamma(3) * max_z;
-  const float delta_x = gamma(5) * (max_x + max_z), delta_y = gamma(5) * (max_y + max_z);
-  const float delta_e = 2 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
-  const float max_e = std::max({std::abs(u), std::abs(v), std::abs(w)});
-  const float delta_t = 3 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * std::abs(inv_det);
-  return hit.t > delta_t && hit.t < tmax;
+  // t must exceed its own rounding-error bound δt, or a ray leaving a surface point could hit
+  // that surface again at a tiny t: a point exactly on an axis-aligned plane has no error to be
+  // offset by (pbrt-v4 §6.8.4, from the error of each step above).
+  const auto magnitude = [](f8 x) { return x < 0.f ? -x : x; };
+  const auto largest = [&](f8 p, f8 q, f8 s) {
+    const f8 m = magnitude(p) > magnitude(q) ? magnitude(p) : magnitude(q);
+    return m > magnitude(s) ? m : magnitude(s);
+  };
+  const f8 max_x = largest(ax, bx, cx), max_y = largest(ay, by, cy), max_z = largest(az, bz, cz);
+  const f8 delta_x = gamma(5) * (max_x + max_z), delta_y = gamma(5) * (max_y + max_z), delta_z = gamma(3) * max_z;
+  const f8 delta_e = 2 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
+  const f8 max_e = largest(u, v, w);
+  const f8 delta_t = 3 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * magnitude(hits.inv_det);
+  hits.mask = simd::bits(~outside & (det != 0.f) & (hits.t > delta_t) & (hits.t <= tmax));
+  return hits;
 }
-
-}  // namespace prism
-
-namespace prism {
 
 // Unit normal of triangle (v0, v1, v2) by the right-hand rule (counter-clockwise = front),
 // computed in double so that tiny or sliver triangles still get one; (0, 0, 0) if degenerate.

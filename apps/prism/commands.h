@@ -8,5 +8,6 @@ namespace prism {
 void add_render_command(CLI::App& app);
 void add_fresnel_command(CLI::App& app);
 void add_converge_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
 
 }  // namespace prism

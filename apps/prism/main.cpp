@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   prism::add_render_command(app);
   prism::add_fresnel_command(app);
   prism::add_converge_command(app);
+  prism::add_bench_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

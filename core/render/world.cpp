@@ -9,11 +9,17 @@
 
 namespace prism {
 
-World::World(const Scene& scene) : scene_(scene), features_(analyze_features(scene)) {
-  for (const Mesh& m : scene.meshes) accel_meshes_.push_back({m.positions, m.indices});
-  std::vector<AccelInstance> accel_instances;
+Accel build_accel(const Scene& scene, const AccelOptions& options) {
+  std::vector<AccelMesh> meshes;
+  for (const Mesh& m : scene.meshes) meshes.push_back({m.positions, m.indices});
+  std::vector<AccelInstance> instances;
+  for (const Instance& inst : scene.instances) instances.push_back({inst.mesh, inst.to_world});
+  return Accel(meshes, instances, options);
+}
+
+World::World(const Scene& scene, const AccelOptions& accel)
+    : scene_(scene), features_(analyze_features(scene)), accel_(build_accel(scene, accel)) {
   for (const Instance& inst : scene.instances) {
-    accel_instances.push_back({inst.mesh, inst.to_world});
     InstanceData d{&scene.meshes[inst.mesh], &inst.to_world, {}, {}, determinant3x3(inst.to_world) < 0};
     const Transform inv_t = transpose(inverse(inst.to_world));
     for (int r = 0; r < 3; ++r)
@@ -24,12 +30,12 @@ World::World(const Scene& scene) : scene_(scene), features_(analyze_features(sce
     instances_.push_back(d);
     has_alpha_ |= scene.materials[scene.meshes[inst.mesh].material].alpha_mode != AlphaMode::opaque;
   }
-  accel_ = Accel(accel_meshes_, accel_instances);
   add_lights();
 }
 
-// Transformed exactly as the accel transforms them, so the shading point lies on the very
-// triangle the ray hit.
+// Transformed exactly as the accel transforms the triangles it flattens into world space, so the
+// shading point lies on the very triangle the ray hit. (A hit on an instanced mesh is found in
+// the mesh's space; its barycentrics carry over, as the transform is affine.)
 std::array<Vec3f, 3> World::world_vertices(const InstanceData& inst, uint32_t prim) const {
   const Mesh& m = *inst.mesh;
   std::array<Vec3f, 3> v;

@@ -16,9 +16,12 @@
 
 namespace prism {
 
+// The acceleration structure over the scene's instances, as World uses it.
+Accel build_accel(const Scene& scene, const AccelOptions& options = {});
+
 class World {
  public:
-  explicit World(const Scene& scene);
+  explicit World(const Scene& scene, const AccelOptions& accel = {});
 
   // The first surface along the ray that is not cut away by its material's alpha (glTF MASK
   // and BLEND; BLEND decided stochastically by a hash of the ray, pbrt-v4 style).
@@ -60,7 +63,6 @@ class World {
 
   const Scene& scene_;
   SceneFeatures features_;
-  std::vector<AccelMesh> accel_meshes_;
   std::vector<InstanceData> instances_;
   Accel accel_;
   std::vector<Light> lights_;

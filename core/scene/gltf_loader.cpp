@@ -283,6 +283,16 @@ class GltfLoader {
       warn_once("skipping primitives without POSITION data");
       return std::nullopt;
     }
+    if (pos->second >= 0 && size_t(pos->second) < model_.accessors.size()) {
+      // Compressed meshes (Draco, meshopt) keep their positions elsewhere and their accessors
+      // hold no data. Reading them as zeros would give never-hit triangles that still take
+      // triangle ids, unlike raybench, whose global numbering `prism bench rays` follows.
+      const tinygltf::Accessor& acc = model_.accessors[pos->second];
+      if (acc.bufferView < 0 && !acc.sparse.isSparse) {
+        warn_once("skipping primitives whose POSITION accessor has no data (compressed meshes are not supported)");
+        return std::nullopt;
+      }
+    }
     Mesh mesh;
     const auto p = read_accessor_floats(model_, pos->second, 3, context + " POSITION");
     mesh.positions.resize(p.size() / 3);

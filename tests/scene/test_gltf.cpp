@@ -103,6 +103,25 @@ TEST_CASE("a minimal glTF loads with its hierarchy, camera, light and emissive m
   CHECK_FALSE(f.environment);
 }
 
+TEST_CASE("primitives without position data are skipped, as raybench skips them") {
+  // A compressed primitive (no POSITION data) before a plain one: only the plain one becomes a
+  // mesh, so triangle ids stay those of raybench's global numbering.
+  std::string json = TriangleGltf{}.json();
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const size_t at = json.find(from);
+    REQUIRE(at != std::string::npos);
+    json.replace(at, from.size(), to);
+  };
+  replace(R"("primitives": [)", R"("primitives": [{"attributes": {"POSITION": 2}, "indices": 1}, )");
+  replace(R"("type": "SCALAR"})", R"("type": "SCALAR"}, {"componentType": 5126, "count": 3, "type": "VEC3"})");
+  log::set_level(log::Level::quiet);
+  const Scene scene = load_gltf(write(test::temp_dir("gltf_nodata"), "nodata.gltf", json));
+  log::set_level(log::Level::info);
+  REQUIRE(scene.meshes.size() == 1);
+  CHECK(scene.meshes[0].positions[1] == Vec3f(1, 0, 0));
+  CHECK(scene.triangle_count() == 1);
+}
+
 TEST_CASE("malformed glTF files fail with a message naming the file and the problem") {
   const auto dir = test::temp_dir("gltf_bad");
   const std::string good = TriangleGltf{}.json();

@@ -1,0 +1,45 @@
+#pragma once
+// Small SIMD vectors for the BVH: GCC vector extensions, so that the box and triangle tests read
+// like their scalar formulas and compile to SSE, AVX or AVX-512 code for whatever -march allows.
+
+#include <cstdint>
+#include <cstring>
+
+#if defined(__SSE__)
+#include <immintrin.h>
+#endif
+
+namespace prism::simd {
+
+using f4 = float __attribute__((vector_size(16)));
+using i4 = int32_t __attribute__((vector_size(16)));
+using f8 = float __attribute__((vector_size(32)));
+using i8 = int32_t __attribute__((vector_size(32)));
+using d8 = double __attribute__((vector_size(64)));
+
+template <typename V>
+V load(const float* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);  // no alignment assumed; compiles to one (unaligned) load
+  return v;
+}
+
+// The lane-wise minimum and maximum that ignore a NaN in their first argument: (p − o)/d is NaN
+// when a ray lies in a slab's plane, and such a slab must not limit the interval.
+template <typename V>
+V min_ignore_nan(V candidate, V acc) { return candidate < acc ? candidate : acc; }
+template <typename V>
+V max_ignore_nan(V candidate, V acc) { return candidate > acc ? candidate : acc; }
+
+// Bit i set when lane i of the comparison result `m` is true.
+inline uint32_t bits(i8 m) {
+#if defined(__AVX__)
+  return uint32_t(_mm256_movemask_ps(__m256(m)));
+#else
+  uint32_t b = 0;
+  for (int i = 0; i < 8; ++i) b |= uint32_t(m[i] != 0) << i;
+  return b;
+#endif
+}
+
+}  // namespace prism::simd
