@@ -20,7 +20,7 @@ float TabulatedSpectrum::operator()(float lambda) const {
   if (lambda >= lambdas_.back()) return values_.back();
   const size_t i = size_t(std::upper_bound(lambdas_.begin(), lambdas_.end(), lambda) - lambdas_.begin()) - 1;
   const float t = (lambda - lambdas_[i]) / (lambdas_[i + 1] - lambdas_[i]);
-  return (1.f - t) * values_[i] + t * values_[i + 1];
+  return values_[i] + t * (values_[i + 1] - values_[i]);  // exact where neighbours are equal
 }
 
 float BlackbodySpectrum::planck(float lambda_nm, float kelvin) {

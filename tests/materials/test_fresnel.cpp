@@ -168,6 +168,12 @@ TEST_CASE("dispersion models: KHR_materials_dispersion's Abbe form and Sellmeier
   CHECK(abbe_number(sf11) == Approx(25.68).margin(0.05));
   CHECK(ior(sf11, 450) > ior(sf11, 650));  // normal dispersion: blue bends more
   CHECK(ior(CauchyIor{1.5f, 0.004f}, 500) == Approx(1.5 + 0.004 / 0.25));
+  // Tabulated n(λ): linear between measured points, dispersive when they differ.
+  const IorModel table = TabulatedIor{TabulatedSpectrum({400, 500, 700}, {1.343f, 1.337f, 1.331f})};
+  CHECK(ior(table, 450) == Approx(1.340));
+  CHECK(ior(table, 600) == Approx(1.334));
+  CHECK(is_dispersive(table));
+  CHECK_FALSE(is_dispersive(TabulatedIor{TabulatedSpectrum({400, 700}, {1.5f, 1.5f})}));
 }
 
 TEST_CASE("catalogue materials are finite at the ends of the wavelength range") {
