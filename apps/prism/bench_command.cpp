@@ -102,6 +102,7 @@ void add_bench_command(CLI::App& app) {
                 "Copy shared meshes into the world-space BVH instead of instancing them");
   cmd->add_option("--hits", args->hits, "Write the last pass's results in raybench's HITS.bin format");
   cmd->callback([args] { run(*args); });
+  add_bench_features_command(bench);
 }
 
 }  // namespace prism
