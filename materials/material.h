@@ -27,7 +27,8 @@ struct MeasuredMetal {
 // The dielectric interface of a surface: its index, and, for a closed volume (not a thin
 // wall), the Beer–Lambert absorption coefficient σ_a(λ) of its interior, per scene unit.
 struct Dielectric {
-  explicit Dielectric(IorModel ior_model = ConstantIor{1.5f}, std::optional<Spectrum> sigma_a = {}, bool thin = false)
+  Dielectric() : Dielectric(ConstantIor{1.5f}) {}
+  explicit Dielectric(IorModel ior_model, std::optional<Spectrum> sigma_a = {}, bool thin = false)
       : ior(std::move(ior_model)), absorption(std::move(sigma_a)), thin_walled(thin), dispersive(is_dispersive(ior)) {}
 
   IorModel ior;
@@ -79,13 +80,13 @@ enum class AlphaMode { opaque, mask, blend };
 struct Material {
   std::string name;
   MaterialKind kind;
-  std::optional<Spectrum> emission;  // emitted radiance; front face only unless double_sided
+  std::optional<Spectrum> emission{};  // emitted radiance; front face only unless double_sided
   bool double_sided = false;
   AlphaMode alpha_mode = AlphaMode::opaque;
   float alpha_cutoff = 0.5f;
-  std::optional<Texture> normal_texture;  // tangent space, linear
+  std::optional<Texture> normal_texture{};  // tangent space, linear
   float normal_scale = 1;
-  std::optional<Texture> emission_texture;  // sRGB; multiplies the emission's RGB
+  std::optional<Texture> emission_texture{};  // sRGB; multiplies the emission's RGB
   Rgb emission_rgb{0, 0, 0};                 // emissiveFactor × strength (for a textured emission)
 
   // Emitted radiance at a point (with the texture, if any), or nothing.

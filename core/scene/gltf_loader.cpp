@@ -245,7 +245,7 @@ class GltfLoader {
       // glTF's default material: white, metallic 1, roughness 1 (glTF 2.0 §3.9.2).
       if (default_material_ < 0) {
         default_material_ = int(scene_.materials.size());
-        scene_.materials.push_back({"default", PbrMaterial{}, {}, false});
+        scene_.materials.push_back({.name = "default", .kind = PbrMaterial{}});
       }
       return uint32_t(default_material_);
     }

@@ -14,7 +14,7 @@ using namespace prism;
 namespace {
 
 Material glass(IorModel ior, std::optional<Spectrum> absorption = {}) {
-  return Material{"glass", PbrMaterial::glass(Dielectric(std::move(ior), std::move(absorption))), {}, false};
+  return Material{.name = "glass", .kind = PbrMaterial::glass(Dielectric(std::move(ior), std::move(absorption)))};
 }
 
 // A closed glass icosphere under a uniform environment of radiance 1, filling the image.
@@ -94,7 +94,7 @@ TEST_CASE("the Whitted and path integrators agree on smooth Fresnel surfaces lit
   // albedo 0.2, as it scales with the albedo), inside the 1% tolerance below.
   Scene scene;
   scene.materials.push_back(test::diffuse({0.1f, 0.1f, 0.1f}, "floor"));
-  scene.materials.push_back(Material{"gold", PbrMaterial::metal_of(MaterialCatalogue::standard().metal("Au")), {}, false});
+  scene.materials.push_back(Material{.name = "gold", .kind = PbrMaterial::metal_of(MaterialCatalogue::standard().metal("Au"))});
   scene.materials.push_back(glass(ConstantIor{1.5f}));
   test::add_mesh(scene, test::make_quad({-4, 0, 4}, {8, 0, 0}, {0, 0, -8}, 0));
   test::add_mesh(scene, test::make_icosphere({-0.6f, 0.5f, 0}, 0.5f, 3, 1));

@@ -44,7 +44,7 @@ const CameraDesc kCamera = test::look_at({0, 0, 2}, {0, 0, 0}, 40.f);  // the qu
 TEST_CASE("alpha MASK cuts surfaces away where the texture's alpha is below the cutoff") {
   PbrMaterial p = black();
   p.base_color_texture = two_texels({255, 255, 255, 0}, {255, 255, 255, 255});
-  Material m{"mask", p, {}, false};
+  Material m{.name = "mask", .kind = p};
   m.alpha_mode = AlphaMode::mask;
   const auto img = test::render_rgb(quad_before_sky(m), kCamera, 16, 16, 16);
   CHECK(img.stats.invalid_samples == 0);
@@ -61,7 +61,7 @@ TEST_CASE("alpha MASK cuts surfaces away where the texture's alpha is below the 
 TEST_CASE("alpha BLEND lets the sky through in proportion to 1 - alpha") {
   PbrMaterial p = black();
   p.alpha = 0.3f;
-  Material m{"blend", p, {}, false};
+  Material m{.name = "blend", .kind = p};
   m.alpha_mode = AlphaMode::blend;
   const auto img = test::render_rgb(quad_before_sky(m), kCamera, 16, 16, 1024);
   test::check_mean(img, 0, 0, 16, 16, 0.7, 0.02);
@@ -71,7 +71,7 @@ TEST_CASE("a textured, vertex-coloured diffuse surface shows texture x factor x 
   PbrMaterial p = PbrMaterial::plastic(Rgb{1, 0.5f, 1}, 1);
   p.specular = 0;  // pure Lambert, so the answer is the albedo
   p.base_color_texture = two_texels({255, 255, 255, 255}, {128, 128, 128, 255});
-  Scene scene = quad_before_sky(Material{"tex", p, {}, false});
+  Scene scene = quad_before_sky(Material{.name = "tex", .kind = p});
   scene.meshes[0].colors.assign(4, {1, 1, 0.5f, 1});
   // Lit by the sky alone from the front; a closed box is not needed: E = π (uniform sky, hemisphere).
   const auto img = test::render_rgb(scene, kCamera, 16, 16, 256);
@@ -88,7 +88,7 @@ TEST_CASE("a normal map tilts the shading normal but never shades below the geom
   // reflects at most what it receives, and never NaN.
   PbrMaterial p = PbrMaterial::plastic(Rgb{1, 1, 1}, 1);
   p.specular = 0;
-  Material m{"bumpy", p, {}, false};
+  Material m{.name = "bumpy", .kind = p};
   const uint8_t x = uint8_t(std::lround((std::sin(radians(60)) + 1) / 2 * 255));
   const uint8_t z = uint8_t(std::lround((std::cos(radians(60)) + 1) / 2 * 255));
   m.normal_texture = two_texels({x, 128, z, 255}, {x, 128, z, 255});

@@ -76,7 +76,7 @@ CameraDesc look_at(const Vec3f& eye, const Vec3f& target, float yfov_degrees) {
 }
 
 Material diffuse(Rgb albedo, const std::string& name) {
-  return Material{name, DiffuseMaterial{RgbAlbedoSpectrum(albedo)}, {}, false};
+  return Material{.name = name, .kind = DiffuseMaterial{RgbAlbedoSpectrum(albedo)}};
 }
 
 uint32_t add_mesh(Scene& scene, Mesh mesh) {
