@@ -22,12 +22,12 @@ bool hittable(const Triangle& v) {
 Bounds3f transform_bounds(const Transform& m, const Bounds3f& b) {
   Vec3d lo(kInfinity, kInfinity, kInfinity), hi(-kInfinity, -kInfinity, -kInfinity);
   for (int corner = 0; corner < 8; ++corner) {
-    const Vec3d p = m.point(Vec3d((corner & 1 ? b.hi : b.lo).x, (corner & 2 ? b.hi : b.lo).y,
-                                  (corner & 4 ? b.hi : b.lo).z));
+    const Vec3d p =
+        m.point(Vec3d((corner & 1 ? b.hi : b.lo).x, (corner & 2 ? b.hi : b.lo).y, (corner & 4 ? b.hi : b.lo).z));
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
   }
-  const double magnitude = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x),
-                                     std::abs(hi.y), std::abs(hi.z)});
+  const double magnitude =
+      std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)});
   const double pad = magnitude * 0x1p-20;
   Bounds3f out;
   for (int a = 0; a < 3; ++a) {
@@ -112,8 +112,8 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
 }
 
 struct Accel::Closest {
-  float t;           // the closest hit so far (ray.tmax before any)
-  uint32_t id = 0;   // its global triangle number: 0 before any, so that t = tmax never wins
+  float t;          // the closest hit so far (ray.tmax before any)
+  uint32_t id = 0;  // its global triangle number: 0 before any, so that t = tmax never wins
   uint32_t instance = kWorld;
   TriangleHit hit{};
 };

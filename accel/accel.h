@@ -20,8 +20,8 @@
 namespace prism {
 
 struct AccelMesh {
-  std::span<const Vec3f> positions;    // object space
-  std::span<const uint32_t> indices;   // three per triangle
+  std::span<const Vec3f> positions;   // object space
+  std::span<const uint32_t> indices;  // three per triangle
 };
 
 struct AccelInstance {

@@ -48,8 +48,8 @@ constexpr uint32_t index(uint32_t ref) { return ref & kMaxIndex; }  // first blo
 }  // namespace bvh_ref
 
 struct BvhBuildOptions {
-  int block_size = 1;            // primitive slots per leaf block (the SIMD width of the leaf test)
-  float traversal_cost = 1.f;    // SAH: cost of visiting a node, relative to testing one block
+  int block_size = 1;                // primitive slots per leaf block (the SIMD width of the leaf test)
+  float traversal_cost = 1.f;        // SAH: cost of visiting a node, relative to testing one block
   uint32_t first_solo = 0xFFFFFFFF;  // primitives numbered from here on get a solo leaf each
 };
 
@@ -81,8 +81,7 @@ class Bvh {
   // Builds over the primitives whose bounds are not empty. `slots` receives them in the order
   // the leaves list them: block after block of options.block_size slots, unused ones kEmptySlot.
   // Solo primitives are not in `slots`: their leaves name them (minus options.first_solo).
-  static Bvh build(std::span<const Bounds3f> prim_bounds, const BvhBuildOptions& options,
-                   std::vector<uint32_t>& slots);
+  static Bvh build(std::span<const Bounds3f> prim_bounds, const BvhBuildOptions& options, std::vector<uint32_t>& slots);
 
   bool empty() const { return root_ == kNoRoot; }
   Bounds3f bounds() const { return bounds_; }
@@ -136,10 +135,10 @@ bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&
       const auto slab = [&](size_t offset, int a, const f8& inv) {
         return (simd::load<f8>(reinterpret_cast<const float*>(planes + offset)) - ray.o[a]) * inv;
       };
-      const f8 t_enter = simd::max_ignore_nan(
-          slab(ray.near[0], 0, ray.inv_near[0]),
-          simd::max_ignore_nan(slab(ray.near[1], 1, ray.inv_near[1]),
-                               simd::max_ignore_nan(slab(ray.near[2], 2, ray.inv_near[2]), f8{})));
+      const f8 t_enter =
+          simd::max_ignore_nan(slab(ray.near[0], 0, ray.inv_near[0]),
+                               simd::max_ignore_nan(slab(ray.near[1], 1, ray.inv_near[1]),
+                                                    simd::max_ignore_nan(slab(ray.near[2], 2, ray.inv_near[2]), f8{})));
       const f8 t_leave = simd::min_ignore_nan(
           slab(ray.far[0], 0, ray.inv_far[0]),
           simd::min_ignore_nan(slab(ray.far[1], 1, ray.inv_far[1]),
@@ -154,8 +153,10 @@ bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&
         // Several: fetch them all now, so that memory works while the nearest is traversed.
         for (uint32_t m = mask; m; m &= m - 1) {
           const uint32_t c = node.child[std::countr_zero(m)];
-          if (!bvh_ref::is_leaf(c)) prefetch(&nodes_[c], sizeof(BvhNode));
-          else if (!bvh_ref::is_solo(c)) prefetch(&blocks[bvh_ref::index(c)], sizeof(Block));
+          if (!bvh_ref::is_leaf(c))
+            prefetch(&nodes_[c], sizeof(BvhNode));
+          else if (!bvh_ref::is_solo(c))
+            prefetch(&blocks[bvh_ref::index(c)], sizeof(Block));
         }
         if constexpr (AnyHit) {  // any hit will do: no order, no distances to keep
           ref = node.child[i];

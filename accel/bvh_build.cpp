@@ -25,7 +25,7 @@ constexpr int kBins = 32;
 // Below this depth the SAH decides; deeper nodes split at the object median, which bounds the
 // depth (and so the traversal stack) even for pathological inputs.
 constexpr int kSahDepth = 40;
-constexpr uint32_t kParallelPrims = 4096;   // a subtree this large is built as its own task
+constexpr uint32_t kParallelPrims = 4096;  // a subtree this large is built as its own task
 constexpr uint32_t kParallelBinning = 1 << 16;
 
 // A box in SIMD form; lane 3 is unused.
@@ -90,8 +90,8 @@ struct Bins {
 };
 
 struct Split {
-  int axis = -1;      // -1: no SAH split; split at the object median
-  int bin = 0;        // bins [0, bin] go left
+  int axis = -1;  // -1: no SAH split; split at the object median
+  int bin = 0;    // bins [0, bin] go left
   float cost = kInfinity;
 };
 

@@ -27,9 +27,13 @@ V load(const float* p) {
 // The lane-wise minimum and maximum that ignore a NaN in their first argument: (p − o)/d is NaN
 // when a ray lies in a slab's plane, and such a slab must not limit the interval.
 template <typename V>
-V min_ignore_nan(V candidate, V acc) { return candidate < acc ? candidate : acc; }
+V min_ignore_nan(V candidate, V acc) {
+  return candidate < acc ? candidate : acc;
+}
 template <typename V>
-V max_ignore_nan(V candidate, V acc) { return candidate > acc ? candidate : acc; }
+V max_ignore_nan(V candidate, V acc) {
+  return candidate > acc ? candidate : acc;
+}
 
 // Bit i set when lane i of the comparison result `m` is true.
 inline uint32_t bits(i8 m) {

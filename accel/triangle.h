@@ -40,8 +40,8 @@ struct TriangleHit {
 // Eight triangles, stored lane by lane. Unused lanes hold NaN vertices, which never hit.
 struct alignas(32) TriangleBlock {
   static constexpr int kLanes = 8;
-  simd::f8 v[3][3];      // v[vertex][axis]
-  uint32_t id[kLanes];   // the owner's number for each triangle
+  simd::f8 v[3][3];     // v[vertex][axis]
+  uint32_t id[kLanes];  // the owner's number for each triangle
 
   TriangleBlock() {
     for (auto& vertex : v)

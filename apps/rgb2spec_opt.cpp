@@ -2,9 +2,9 @@
 // writes it in RgbToSpectrumTable's format. The build runs it to generate
 // build/data/spectra/srgb_sigmoid.coeff (see apps/CMakeLists.txt).
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cmath>

@@ -13,12 +13,12 @@ namespace prism {
 
 template <int N>
 struct BsdfSample {
-  SampledSpectrum<N> f;        // BSDF value for (wo, wi)
+  SampledSpectrum<N> f;  // BSDF value for (wo, wi)
   Vec3f wi;
-  float pdf = 0;               // solid-angle density; for a delta lobe, the discrete probability
-  bool specular = false;       // delta lobe: pdf is a probability, f includes the delta
+  float pdf = 0;          // solid-angle density; for a delta lobe, the discrete probability
+  bool specular = false;  // delta lobe: pdf is a probability, f includes the delta
   bool transmission = false;
-  float eta = 1;               // relative index crossed by a refraction (1 otherwise)
+  float eta = 1;  // relative index crossed by a refraction (1 otherwise)
 };
 
 // One delta direction of a BSDF and the share of light it carries (f·|cos θ_i| with the delta
@@ -40,7 +40,8 @@ struct DeltaLobes {
     if (!l.weight.is_zero()) lobes[count++] = l;
   }
   void add_scaled(const DeltaLobes& other, float s) {
-    for (int i = 0; i < other.count; ++i) add({other.lobes[i].wi, other.lobes[i].weight * s, other.lobes[i].transmission, other.lobes[i].eta});
+    for (int i = 0; i < other.count; ++i)
+      add({other.lobes[i].wi, other.lobes[i].weight * s, other.lobes[i].transmission, other.lobes[i].eta});
   }
   const DeltaLobe<N>* begin() const { return lobes.data(); }
   const DeltaLobe<N>* end() const { return lobes.data() + count; }

@@ -61,7 +61,7 @@ MeasuredMetal MaterialCatalogue::metal(std::string_view key) const {
   const auto& l = table.column("wavelength_nm");
   const auto as_float = [](const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); };
   MeasuredMetal m{TabulatedSpectrum(as_float(l), as_float(table.column("n"))),
-                      TabulatedSpectrum(as_float(l), as_float(table.column("k"))), std::string(key)};
+                  TabulatedSpectrum(as_float(l), as_float(table.column("k"))), std::string(key)};
   impl_->metals.emplace(std::string(key), m);
   return m;
 }

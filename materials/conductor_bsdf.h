@@ -40,8 +40,7 @@ class ConductorBsdf {
     const Vec3f m = wo + wi;
     if (wo.z == 0 || wi.z == 0 || length_squared(m) == 0) return SampledSpectrum<N>(0.f);
     const Vec3f wm = normalize(m);
-    return reflectance(dot(wo, wm)) *
-           (distribution_.D(wm) * distribution_.G(wo, wi) / (4 * wo.z * wi.z));
+    return reflectance(dot(wo, wm)) * (distribution_.D(wm) * distribution_.G(wo, wi) / (4 * wo.z * wi.z));
   }
 
   // Visible-normal sampling: pdf(wi) = D_wo(m) / (4 |wo·m|).

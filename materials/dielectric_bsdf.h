@@ -34,8 +34,13 @@ class DielectricBsdf {
   // value for all lanes: a λ-dependent index terminates the secondary wavelengths first.
   DielectricBsdf(float alpha, float eta, const SampledSpectrum<N>& tint, bool thin, float transmission = 1.f,
                  float specular = 1.f)
-      : distribution_(alpha), smooth_(TrowbridgeReitz::effectively_smooth(alpha) || eta == 1), eta_(eta),
-        tint_(tint), thin_(thin), transmission_(transmission), specular_(specular) {}
+      : distribution_(alpha),
+        smooth_(TrowbridgeReitz::effectively_smooth(alpha) || eta == 1),
+        eta_(eta),
+        tint_(tint),
+        thin_(thin),
+        transmission_(transmission),
+        specular_(specular) {}
 
   bool is_specular() const { return smooth_; }
 

@@ -67,7 +67,9 @@ inline FresnelReflectance fresnel_dielectric_polarized(float cos_theta_i, float 
   return {float((Rs + Rp) / 2), float(Rs), float(Rp)};
 }
 
-inline float fresnel_dielectric(float cos_theta_i, float eta) { return fresnel_dielectric_polarized(cos_theta_i, eta).R; }
+inline float fresnel_dielectric(float cos_theta_i, float eta) {
+  return fresnel_dielectric_polarized(cos_theta_i, eta).R;
+}
 
 // Fresnel equations with a complex relative index η = n + ik (Born & Wolf §14.2): the same
 // amplitudes as above with complex cos θ_t = sqrt(1 − sin²θ_i / η²). Exact, not the usual
@@ -80,7 +82,9 @@ inline FresnelReflectance fresnel_conductor_polarized(float cos_theta_i, float n
   const C cos_t = std::sqrt(1.0 - (1 - cos_i * cos_i) / (eta * eta));
   // |r|² of (a − b) / (a + b); a vanishing denominator (grazing onto an index-matched k = 0
   // surface) is the grazing limit, R = 1.
-  const auto reflectance = [](C a, C b) { return std::norm(a + b) == 0 ? 1.0 : std::min(1.0, std::norm((a - b) / (a + b))); };
+  const auto reflectance = [](C a, C b) {
+    return std::norm(a + b) == 0 ? 1.0 : std::min(1.0, std::norm((a - b) / (a + b)));
+  };
   const double Rs = reflectance(cos_i, eta * cos_t), Rp = reflectance(eta * cos_i, cos_t);
   return {float((Rs + Rp) / 2), float(Rs), float(Rp)};
 }

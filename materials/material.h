@@ -39,7 +39,7 @@ struct Dielectric {
 
 // Where on a surface a material is evaluated: its texture coordinates and vertex colour.
 struct SurfacePoint {
-  std::array<Vec2f, 2> uv{};                   // TEXCOORD_0, TEXCOORD_1
+  std::array<Vec2f, 2> uv{};                      // TEXCOORD_0, TEXCOORD_1
   std::array<float, 4> vertex_color{1, 1, 1, 1};  // COLOR_0 (RGBA), white when absent
 };
 
@@ -57,9 +57,9 @@ struct PbrMaterial {
   Rgb base_color{1, 1, 1};
   float alpha = 1;
   float metallic = 1, roughness = 1, transmission = 0;
-  float specular = 1;                 // KHR_materials_specular's factor: scales the dielectric's reflectance
+  float specular = 1;  // KHR_materials_specular's factor: scales the dielectric's reflectance
   Dielectric dielectric;
-  std::optional<MeasuredMetal> metal;  // replaces the base-colour metal when set
+  std::optional<MeasuredMetal> metal;                 // replaces the base-colour metal when set
   std::optional<Texture> base_color_texture;          // sRGB; RGB × base_color, A × alpha
   std::optional<Texture> metallic_roughness_texture;  // linear; B × metallic, G × roughness
   std::optional<Texture> transmission_texture;        // linear; R × transmission
@@ -87,7 +87,7 @@ struct Material {
   std::optional<Texture> normal_texture{};  // tangent space, linear
   float normal_scale = 1;
   std::optional<Texture> emission_texture{};  // sRGB; multiplies the emission's RGB
-  Rgb emission_rgb{0, 0, 0};                 // emissiveFactor × strength (for a textured emission)
+  Rgb emission_rgb{0, 0, 0};                  // emissiveFactor × strength (for a textured emission)
 
   // Emitted radiance at a point (with the texture, if any), or nothing.
   std::optional<Spectrum> emission_at(const SurfacePoint& at) const;
@@ -150,7 +150,8 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
   for (int i = 0; i < N; ++i) color[i] = base(lambda[i]);
   const DielectricBsdf<N> dielectric(alpha, eta, color, p.thin_walled, p.transmission, material.specular);
   if (p.metallic <= 0 && p.transmission >= 1) return dielectric;
-  if (p.metallic <= 0 && p.transmission <= 0 && material.specular <= 0) return DiffuseBsdf<N>(color);  // no specular layer
+  if (p.metallic <= 0 && p.transmission <= 0 && material.specular <= 0)
+    return DiffuseBsdf<N>(color);  // no specular layer
   return PbrBsdf<N>(p.metallic, metal, dielectric, p.transmission, color, alpha, eta, material.specular);
 }
 

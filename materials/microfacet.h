@@ -57,7 +57,7 @@ class TrowbridgeReitz {
     const Vec3f t1 = wh.z < 0.99999f ? normalize(cross(Vec3f(0, 0, 1), wh)) : Vec3f(1, 0, 0);
     const Vec3f t2 = cross(wh, t1);
     Vec2f p = sample_uniform_disk_concentric(u);  // projected area of the visible hemisphere:
-    const float h = std::sqrt(1 - p.x * p.x);    // a disk warped by the view's foreshortening
+    const float h = std::sqrt(1 - p.x * p.x);     // a disk warped by the view's foreshortening
     p.y = lerp((1 + wh.z) / 2, h, p.y);
     const float pz = std::sqrt(std::max(0.f, 1 - p.x * p.x - p.y * p.y));
     const Vec3f nh = t1 * p.x + t2 * p.y + wh * pz;

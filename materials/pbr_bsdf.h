@@ -25,8 +25,14 @@ class PbrBsdf {
   // alpha, eta and specular must be those of `dielectric` (they pick its albedo E).
   PbrBsdf(float metallic, const ConductorBsdf<N>& metal, const DielectricBsdf<N>& dielectric, float transmission,
           const SampledSpectrum<N>& albedo, float alpha, float eta, float specular)
-      : metallic_(metallic), transmission_(transmission), metal_(metal), dielectric_(dielectric), albedo_(albedo),
-        alpha_(alpha), eta_(eta), specular_(specular),
+      : metallic_(metallic),
+        transmission_(transmission),
+        metal_(metal),
+        dielectric_(dielectric),
+        albedo_(albedo),
+        alpha_(alpha),
+        eta_(eta),
+        specular_(specular),
         e_avg_(specular * SpecularAlbedo::table().average(alpha, eta)) {}
 
   bool is_specular() const {

@@ -10,13 +10,15 @@ namespace prism {
 
 Image::Image(int width, int height, std::vector<uint8_t> rgba)
     : width_(width), height_(height), rgba_(std::move(rgba)) {
-  if (width <= 0 || height <= 0 || rgba_.size() != size_t(width) * height * 4) fail("image of {}x{} has {} bytes", width, height, rgba_.size());
+  if (width <= 0 || height <= 0 || rgba_.size() != size_t(width) * height * 4)
+    fail("image of {}x{} has {} bytes", width, height, rgba_.size());
 }
 
 std::shared_ptr<const Image> Image::decode(const unsigned char* bytes, size_t size, const std::string& what) {
   int w = 0, h = 0, channels = 0;
   unsigned char* data = stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4);
-  if (!data) fail("{}: cannot decode the image ({})", what, stbi_failure_reason() ? stbi_failure_reason() : "unknown format");
+  if (!data)
+    fail("{}: cannot decode the image ({})", what, stbi_failure_reason() ? stbi_failure_reason() : "unknown format");
   std::vector<uint8_t> rgba(data, data + size_t(w) * h * 4);
   stbi_image_free(data);
   return std::make_shared<Image>(w, h, std::move(rgba));
@@ -55,12 +57,14 @@ namespace {
 // A texel index in [0, n) for integer coordinate i under the wrap mode.
 int wrap_index(int i, int n, Wrap mode) {
   switch (mode) {
-    case Wrap::clamp_to_edge: return std::clamp(i, 0, n - 1);
+    case Wrap::clamp_to_edge:
+      return std::clamp(i, 0, n - 1);
     case Wrap::mirrored_repeat: {
       const int period = 2 * n, m = ((i % period) + period) % period;
       return m < n ? m : period - 1 - m;
     }
-    case Wrap::repeat: break;
+    case Wrap::repeat:
+      break;
   }
   return ((i % n) + n) % n;
 }

@@ -61,8 +61,8 @@ RgbSigmoidPolynomial RgbToSpectrumTable::operator()(Rgb rgb) const {
   const float y = rgb[(l + 2) % 3] * float(res_ - 1) / z;
 
   const int xi = std::min(int(x), res_ - 2), yi = std::min(int(y), res_ - 2);
-  const int zi = int(std::clamp<ptrdiff_t>(
-      std::upper_bound(z_nodes_.begin(), z_nodes_.end(), z) - z_nodes_.begin() - 1, 0, res_ - 2));
+  const int zi = int(
+      std::clamp<ptrdiff_t>(std::upper_bound(z_nodes_.begin(), z_nodes_.end(), z) - z_nodes_.begin() - 1, 0, res_ - 2));
   const float dx = x - float(xi), dy = y - float(yi);
   const float dz = std::clamp((z - z_nodes_[zi]) / (z_nodes_[zi + 1] - z_nodes_[zi]), 0.f, 1.f);
 

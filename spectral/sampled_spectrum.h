@@ -22,22 +22,22 @@ class SampledSpectrum {
   constexpr float operator[](int i) const { return v_[i]; }
   constexpr float& operator[](int i) { return v_[i]; }
 
-#define PRISM_LANEWISE(op)                                                          \
-  constexpr SampledSpectrum& operator op##=(const SampledSpectrum& b) {             \
-    for (int i = 0; i < N; ++i) v_[i] op## = b.v_[i];                               \
-    return *this;                                                                   \
-  }                                                                                 \
-  constexpr SampledSpectrum operator op(const SampledSpectrum& b) const {           \
-    SampledSpectrum r = *this;                                                      \
-    return r op## = b;                                                              \
-  }                                                                                 \
-  constexpr SampledSpectrum& operator op##=(float s) {                              \
-    for (int i = 0; i < N; ++i) v_[i] op## = s;                                     \
-    return *this;                                                                   \
-  }                                                                                 \
-  constexpr SampledSpectrum operator op(float s) const {                            \
-    SampledSpectrum r = *this;                                                      \
-    return r op## = s;                                                              \
+#define PRISM_LANEWISE(op)                                                \
+  constexpr SampledSpectrum& operator op##=(const SampledSpectrum& b) {   \
+    for (int i = 0; i < N; ++i) v_[i] op## = b.v_[i];                     \
+    return *this;                                                         \
+  }                                                                       \
+  constexpr SampledSpectrum operator op(const SampledSpectrum& b) const { \
+    SampledSpectrum r = *this;                                            \
+    return r op## = b;                                                    \
+  }                                                                       \
+  constexpr SampledSpectrum& operator op##=(float s) {                    \
+    for (int i = 0; i < N; ++i) v_[i] op## = s;                           \
+    return *this;                                                         \
+  }                                                                       \
+  constexpr SampledSpectrum operator op(float s) const {                  \
+    SampledSpectrum r = *this;                                            \
+    return r op## = s;                                                    \
   }
   PRISM_LANEWISE(+)
   PRISM_LANEWISE(-)

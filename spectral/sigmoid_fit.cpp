@@ -168,9 +168,10 @@ Rgb table_node_rgb(std::span<const float> z_nodes, int l, int zi, int yi, int xi
 RgbToSpectrumTable fit_rgb_to_spectrum_table(int resolution) {
   const int res = resolution;
   const std::vector<float> z = z_nodes(res);
-  const int start = int(std::min_element(z.begin(), z.end(), [](float p, float q) {
-                          return std::abs(p - kStartZ) < std::abs(q - kStartZ);
-                        }) - z.begin());
+  const int start =
+      int(std::min_element(z.begin(), z.end(),
+                           [](float p, float q) { return std::abs(p - kStartZ) < std::abs(q - kStartZ); }) -
+          z.begin());
   std::vector<float> coefficients(size_t(3) * res * res * res * 3);
 
   // One chain per (l, yi, xi) along z; chains are independent, so threads cannot change the result.

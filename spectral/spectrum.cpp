@@ -11,8 +11,7 @@ TabulatedSpectrum::TabulatedSpectrum(std::vector<float> lambdas, std::vector<flo
     : lambdas_(std::move(lambdas)), values_(std::move(values)) {
   if (lambdas_.empty() || lambdas_.size() != values_.size())
     fail("tabulated spectrum needs as many values as wavelengths (got {} and {})", lambdas_.size(), values_.size());
-  if (!std::is_sorted(lambdas_.begin(), lambdas_.end()))
-    fail("tabulated spectrum wavelengths must increase");
+  if (!std::is_sorted(lambdas_.begin(), lambdas_.end())) fail("tabulated spectrum wavelengths must increase");
 }
 
 float TabulatedSpectrum::operator()(float lambda) const {

@@ -68,8 +68,8 @@ void run(const BenchArgs& args) {
   const auto t0 = std::chrono::steady_clock::now();
   const Accel accel = build_accel(scene, args.accel);
   const double build_ms = 1e3 * seconds_since(t0);
-  log::info("{}: {} triangles in {} instances; BVH built in {:.1f} ms, {:.1f} MB", args.scene,
-            accel.triangle_count(), scene.instances.size(), build_ms, accel.memory_bytes() / 1e6);
+  log::info("{}: {} triangles in {} instances; BVH built in {:.1f} ms, {:.1f} MB", args.scene, accel.triangle_count(),
+            scene.instances.size(), build_ms, accel.memory_bytes() / 1e6);
 
   std::vector<HitRecord> hits(rays.size());
   trace_pass(accel, rays, args.occluded, threads, hits);  // warm-up
@@ -95,7 +95,8 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("scene", args->scene, "glTF 2.0 scene (.gltf or .glb)")->required();
   cmd->add_option("rays", args->rays, "Rays in raybench's RAYS.bin format")->required();
   cmd->add_option("--threads", args->threads, "Tracing and build threads (0: all cores)")
-      ->default_val(0)->check(CLI::NonNegativeNumber);
+      ->default_val(0)
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--repeat", args->repeat, "Timed passes")->default_val(5)->check(CLI::PositiveNumber);
   cmd->add_flag("--occluded", args->occluded, "Any-hit (shadow) queries instead of closest hit");
   cmd->add_flag("--flatten", args->accel.flatten_instances,

@@ -3,11 +3,11 @@
 // the dispersion check forced on in turn and together, and prints samples per second (best of
 // --repeat runs, back to back in one process so that the machine's load affects all alike).
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <memory>
-
-#include <fmt/format.h>
 
 #include "apps/prism/commands.h"
 #include "apps/prism/scene_setup.h"
@@ -24,7 +24,8 @@ struct FeaturesArgs {
 
 double best_samples_per_second(const PreparedScene& p, RenderOptions options, int repeat) {
   double best = 0;
-  for (int r = 0; r < repeat; ++r) best = std::max(best, render(*p.world, *p.camera, options).stats.samples_per_second());
+  for (int r = 0; r < repeat; ++r)
+    best = std::max(best, render(*p.world, *p.camera, options).stats.samples_per_second());
   return best;
 }
 
@@ -47,7 +48,9 @@ void run(const FeaturesArgs& args) {
     std::printf("%-44s %12.4g %+8.1f%%\n", name, sps, 100 * (automatic / sps - 1));
   };
   row(fmt::format("as the scene needs (media {}, dispersion {})", needed.media ? "on" : "off",
-                  needed.dispersion ? "on" : "off").c_str(), automatic);
+                  needed.dispersion ? "on" : "off")
+          .c_str(),
+      automatic);
   row("+ medium stack and Beer-Lambert", media);
   row("+ dispersion check", dispersion);
   row("+ both (all optional machinery)", full);
@@ -62,7 +65,9 @@ void add_bench_features_command(CLI::App* bench) {
   CLI::App* cmd = bench->add_subcommand("features", "Samples/s of a scene with each optional path-tracer feature on");
   add_scene_options(cmd, args->scene);
   cmd->add_option("--spp", args->spp, "Samples per pixel of each run")->default_val(16)->check(CLI::PositiveNumber);
-  cmd->add_option("--repeat", args->repeat, "Runs per variant (the best counts)")->default_val(3)->check(CLI::PositiveNumber);
+  cmd->add_option("--repeat", args->repeat, "Runs per variant (the best counts)")
+      ->default_val(3)
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")->default_val(0);
   cmd->callback([args] { run(*args); });
 }

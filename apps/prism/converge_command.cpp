@@ -85,8 +85,8 @@ std::vector<float> reference_image(const ConvergeArgs& args, const PreparedScene
   if (std::filesystem::exists(args.reference)) {
     RgbImage ref = read_exr(args.reference);
     if (ref.width != camera.width() || ref.height != camera.height())
-      fail("{}: the reference is {}x{}, the renders {}x{} (set --width/--height to match)", args.reference,
-           ref.width, ref.height, camera.width(), camera.height());
+      fail("{}: the reference is {}x{}, the renders {}x{} (set --width/--height to match)", args.reference, ref.width,
+           ref.height, camera.width(), camera.height());
     log::info("reference {} ({}x{})", args.reference, ref.width, ref.height);
     return ref.rgb;
   }
@@ -98,9 +98,12 @@ std::vector<float> reference_image(const ConvergeArgs& args, const PreparedScene
   RenderStats stats;
   std::vector<float> rgb = render_rgb(p, options, &stats);
   write_exr(args.reference,
-            {camera.width(), camera.height(), rgb,
+            {camera.width(),
+             camera.height(),
+             rgb,
              ColorPipeline::standard().chromaticities(ColorPipeline::kDefaultOutput),
-             {{"software", std::string("Prism " PRISM_VERSION)}, {"prism.spp", args.reference_spp},
+             {{"software", std::string("Prism " PRISM_VERSION)},
+              {"prism.spp", args.reference_spp},
               {"prism.seconds", stats.seconds}}},
             false);
   return rgb;
@@ -189,19 +192,22 @@ void run(const ConvergeArgs& args) {
 
 void add_converge_command(CLI::App& app) {
   auto args = std::make_shared<ConvergeArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "converge", "Error against render time of several configurations, against a reference image");
+  CLI::App* cmd =
+      app.add_subcommand("converge", "Error against render time of several configurations, against a reference image");
   add_scene_options(cmd, args->scene);
   cmd->add_option("--reference", args->reference,
                   "Reference OpenEXR (linear Rec.709, same size); rendered at --reference-spp and written if absent")
       ->required();
   cmd->add_option("--out", args->out, "Folder for convergence.csv, convergence.png and summary.md")->required();
   cmd->add_option("--max-spp", args->max_spp, "Largest sample budget (budgets double from 1)")
-      ->default_val(256)->check(CLI::PositiveNumber);
+      ->default_val(256)
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--reference-spp", args->reference_spp, "Samples per pixel of a reference this command renders")
-      ->default_val(4096)->check(CLI::PositiveNumber);
+      ->default_val(4096)
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--max-depth", args->max_depth, "Maximum path length in bounces")
-      ->default_val(16)->check(CLI::NonNegativeNumber);
+      ->default_val(16)
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")->default_val(0);
   cmd->add_option("--seed", args->seed, "Random seed")->default_val(0);
   cmd->callback([args] { run(*args); });

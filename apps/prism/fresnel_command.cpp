@@ -53,13 +53,13 @@ std::vector<Reflector> reflectors(const FresnelArgs& args) {
   for (const std::string& key : args.materials) {
     if (catalogue.entry(key).metal) {
       const MeasuredMetal m = catalogue.metal(key);
-      out.push_back({key, [m](float c, float l) {
-                       return fresnel_conductor_polarized(c, evaluate(m.n, l), evaluate(m.k, l));
-                     }, true});
+      out.push_back(
+          {key, [m](float c, float l) { return fresnel_conductor_polarized(c, evaluate(m.n, l), evaluate(m.k, l)); },
+           true});
     } else {
       const IorModel ior_model = catalogue.dielectric(key);
-      out.push_back({key, [ior_model](float c, float l) { return fresnel_dielectric_polarized(c, ior(ior_model, l)); },
-                     false});
+      out.push_back(
+          {key, [ior_model](float c, float l) { return fresnel_dielectric_polarized(c, ior(ior_model, l)); }, false});
     }
   }
   if (!args.nk.empty()) {
@@ -111,8 +111,8 @@ void run(const FresnelArgs& args) {
     if (a < 0 || a > 90) fail("--angles: {} is outside 0-90 degrees", a);
 
   const bool csv = args.format == "csv";
-  std::printf(csv ? "material,wavelength_nm,angle_deg,R,Rs,Rp\n" : "%-14s %8s %7s %8s %8s %8s\n", "material",
-              "lambda", "angle", "R", "Rs", "Rp");
+  std::printf(csv ? "material,wavelength_nm,angle_deg,R,Rs,Rp\n" : "%-14s %8s %7s %8s %8s %8s\n", "material", "lambda",
+              "angle", "R", "Rs", "Rp");
   for (const Reflector& r : rs)
     for (float l : wavelengths)
       for (float a : angles) {
@@ -134,7 +134,8 @@ void run(const FresnelArgs& args) {
 
 void list_catalogue() {
   for (const CatalogueEntry& e : MaterialCatalogue::standard().entries())
-    std::printf("%-14s %-10s %s (%s)\n", e.key.c_str(), e.metal ? "metal" : "dielectric", e.name.c_str(), e.source.c_str());
+    std::printf("%-14s %-10s %s (%s)\n", e.key.c_str(), e.metal ? "metal" : "dielectric", e.name.c_str(),
+                e.source.c_str());
 }
 
 }  // namespace
@@ -142,7 +143,8 @@ void list_catalogue() {
 void add_fresnel_command(CLI::App& app) {
   auto args = std::make_shared<FresnelArgs>();
   auto list = std::make_shared<bool>(false);
-  CLI::App* cmd = app.add_subcommand("fresnel", "Fresnel reflectance of catalogue materials versus angle and wavelength");
+  CLI::App* cmd =
+      app.add_subcommand("fresnel", "Fresnel reflectance of catalogue materials versus angle and wavelength");
   cmd->add_option("-m,--material", args->materials, "Catalogue materials (repeat or comma-separate), e.g. Cu,Au,N-BK7")
       ->delimiter(',');
   cmd->add_option("--nk", args->nk, "A complex index N,K instead of (or besides) catalogue materials");
@@ -150,7 +152,8 @@ void add_fresnel_command(CLI::App& app) {
   cmd->add_option("--angles", args->angles, "Angles of incidence in degrees, comma-separated")
       ->default_val("0,45,60,80,89");
   cmd->add_option("--format", args->format, "table (with metal colours) or csv")
-      ->check(CLI::IsMember({"table", "csv"}))->default_val("table");
+      ->check(CLI::IsMember({"table", "csv"}))
+      ->default_val("table");
   cmd->add_option("--colorspace", args->colorspace, "Colour space of the printed colours")
       ->default_val(ColorPipeline::kDefaultOutput);
   cmd->add_option("--plot", args->plot, "Write a PNG plot of R(λ) at 0° and 60°");

@@ -1,12 +1,11 @@
 #include "apps/prism/plot.h"
 
+#include <fmt/format.h>
 #include <stb_easy_font.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "base/error.h"
 #include "render/image_output.h"
@@ -77,7 +76,9 @@ class Canvas {
 struct Axis {
   double lo, hi;
   bool log;
-  double map(double v) const { return log ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo)) : (v - lo) / (hi - lo); }
+  double map(double v) const {
+    return log ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo)) : (v - lo) / (hi - lo);
+  }
 };
 
 // Data range, widened to whole decades (log) or padded by 5% (linear).
@@ -102,7 +103,8 @@ std::vector<double> ticks(const Axis& a) {
   }
   const double raw = (a.hi - a.lo) / 6, mag = std::pow(10, std::floor(std::log10(raw)));
   const double step = raw / mag < 2 ? 2 * mag : raw / mag < 5 ? 5 * mag : 10 * mag;
-  for (double v = std::ceil(a.lo / step) * step; v <= a.hi + 1e-9 * step; v += step) t.push_back(std::abs(v) < 1e-12 ? 0 : v);
+  for (double v = std::ceil(a.lo / step) * step; v <= a.hi + 1e-9 * step; v += step)
+    t.push_back(std::abs(v) < 1e-12 ? 0 : v);
   return t;
 }
 

@@ -58,7 +58,8 @@ const char* sampler_name(SamplerKind kind) { return kind == SamplerKind::indepen
 
 void add_scene_options(CLI::App* cmd, SceneArgs& args) {
   cmd->add_option("scene", args.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
-  cmd->add_option("--width", args.width, "Image width in pixels (default: 640, or from --height and the camera's aspect)")
+  cmd->add_option("--width", args.width,
+                  "Image width in pixels (default: 640, or from --height and the camera's aspect)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--height", args.height, "Image height in pixels (default: from the width and the camera's aspect)")
       ->check(CLI::PositiveNumber);
@@ -73,23 +74,27 @@ void add_scene_options(CLI::App* cmd, SceneArgs& args) {
   cmd->add_option("--env-rotate", args.env_rotate, "Rotate the environment image about +Y by DEG degrees")
       ->needs(env_map);
   cmd->add_option("--env-scale", args.env_scale, "Multiply the environment image by S")
-      ->needs(env_map)->check(CLI::NonNegativeNumber);
+      ->needs(env_map)
+      ->check(CLI::NonNegativeNumber);
 }
 
 void add_render_options(CLI::App* cmd, RenderOptions& options) {
   cmd->add_option("--spp", options.spp, "Samples per pixel")->default_val(16)->check(CLI::PositiveNumber);
   cmd->add_option("--seed", options.seed, "Random seed: the same seed gives the same image")->default_val(0);
   cmd->add_option("--threads", options.threads, "Worker threads (0: all cores)")
-      ->default_val(0)->check(CLI::NonNegativeNumber);
+      ->default_val(0)
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-depth", options.path.max_depth, "Maximum path length in bounces")
-      ->default_val(16)->check(CLI::NonNegativeNumber);
+      ->default_val(16)
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--integrator", options.integrator,
                   "path: unidirectional path tracing; whitted: recursive Fresnel splitting")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, IntegratorKind>{{"path", IntegratorKind::path}, {"whitted", IntegratorKind::whitted}}))
       ->default_str("path");
   cmd->add_option("--wavelengths", options.wavelengths, "Wavelengths carried per path (1, 4 or 8)")
-      ->default_val(kDefaultWavelengths)->check(CLI::IsMember({1, 4, 8}));
+      ->default_val(kDefaultWavelengths)
+      ->check(CLI::IsMember({1, 4, 8}));
   cmd->add_option("--sampler", options.sampler,
                   "independent: uniform random numbers; sobol: Owen-scrambled Sobol (best with 2^k spp)")
       ->transform(CLI::CheckedTransformer(
@@ -98,7 +103,8 @@ void add_render_options(CLI::App* cmd, RenderOptions& options) {
   cmd->add_option_function<std::string>(
          "--light-sampling", [&options](const std::string& v) { options.path.next_event = v == "mis"; },
          "mis: next-event estimation combined with BSDF sampling by MIS; bsdf: BSDF sampling only")
-      ->check(CLI::IsMember({"mis", "bsdf"}))->default_str("mis");
+      ->check(CLI::IsMember({"mis", "bsdf"}))
+      ->default_str("mis");
 }
 
 PreparedScene prepare_scene(const SceneArgs& args) {
@@ -117,10 +123,11 @@ PreparedScene prepare_scene(const SceneArgs& args) {
   Scene& scene = *p.scene;
   if (env) scene.environment = RgbIlluminantSpectrum(*env);
   scene.environment_map = std::move(env_map);
-  log::info("loaded {} in {:.2f} s: {} triangles in {} instances, {} materials, {} point, {} spot and {} "
-            "directional lights",
-            args.scene, seconds_since(t0), scene.triangle_count(), scene.instances.size(), scene.materials.size(),
-            scene.point_lights.size(), scene.spot_lights.size(), scene.directional_lights.size());
+  log::info(
+      "loaded {} in {:.2f} s: {} triangles in {} instances, {} materials, {} point, {} spot and {} "
+      "directional lights",
+      args.scene, seconds_since(t0), scene.triangle_count(), scene.instances.size(), scene.materials.size(),
+      scene.point_lights.size(), scene.spot_lights.size(), scene.directional_lights.size());
 
   const CameraDesc camera_desc = choose_camera(scene, args);
   const Vec2i size = resolve_resolution(args.width, args.height, camera_desc);

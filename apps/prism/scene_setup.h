@@ -3,7 +3,6 @@
 // and loading a scene with its environment, camera and world.
 
 #include <CLI/CLI.hpp>
-
 #include <memory>
 #include <string>
 

@@ -34,7 +34,8 @@ PiecewiseConstant1D::Sample PiecewiseConstant1D::sample(float u) const {
 }
 
 PiecewiseConstant2D::PiecewiseConstant2D(std::span<const float> f, int nu, int nv) {
-  if (nu <= 0 || nv <= 0 || f.size() != size_t(nu) * nv) fail("2D distribution of {}x{} has {} values", nu, nv, f.size());
+  if (nu <= 0 || nv <= 0 || f.size() != size_t(nu) * nv)
+    fail("2D distribution of {}x{} has {} values", nu, nv, f.size());
   std::vector<float> row_integrals(nv);
   conditional_.reserve(nv);
   for (int v = 0; v < nv; ++v) {

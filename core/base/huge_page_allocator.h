@@ -34,11 +34,15 @@ struct HugePageAllocator {
     return static_cast<T*>(p);
   }
   void deallocate(T* p, size_t n) {
-    if (n * sizeof(T) < kHugePage) ::operator delete(p, std::align_val_t(alignof(T)));
-    else std::free(p);
+    if (n * sizeof(T) < kHugePage)
+      ::operator delete(p, std::align_val_t(alignof(T)));
+    else
+      std::free(p);
   }
   template <typename U>
-  bool operator==(const HugePageAllocator<U>&) const { return true; }
+  bool operator==(const HugePageAllocator<U>&) const {
+    return true;
+  }
 };
 
 }  // namespace prism

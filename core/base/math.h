@@ -17,13 +17,19 @@ inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
 inline constexpr float kMachineEpsilon = std::numeric_limits<float>::epsilon() * 0.5f;
 
 template <typename T>
-constexpr T sqr(T x) { return x * x; }
+constexpr T sqr(T x) {
+  return x * x;
+}
 
 template <typename T>
-constexpr T lerp(float t, T a, T b) { return (1 - t) * a + t * b; }
+constexpr T lerp(float t, T a, T b) {
+  return (1 - t) * a + t * b;
+}
 
 template <typename T, typename U, typename V>
-constexpr T clamp(T x, U lo, V hi) { return x < lo ? T(lo) : (x > hi ? T(hi) : x); }
+constexpr T clamp(T x, U lo, V hi) {
+  return x < lo ? T(lo) : (x > hi ? T(hi) : x);
+}
 
 inline float safe_sqrt(float x) { return std::sqrt(std::max(0.f, x)); }
 inline double safe_sqrt(double x) { return std::sqrt(std::max(0., x)); }

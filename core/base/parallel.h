@@ -16,7 +16,9 @@ class ThreadLimit {
     if (threads > 0)
       control_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
   }
-  static int available() { return int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)); }
+  static int available() {
+    return int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  }
 
  private:
   std::unique_ptr<tbb::global_control> control_;
@@ -25,11 +27,12 @@ class ThreadLimit {
 // Calls f(i) for i in [0, count) on all allowed threads, one item at a time.
 template <typename F>
 void parallel_for(int64_t count, F&& f) {
-  tbb::parallel_for(tbb::blocked_range<int64_t>(0, count, 1),
-                    [&](const tbb::blocked_range<int64_t>& r) {
-                      for (int64_t i = r.begin(); i < r.end(); ++i) f(i);
-                    },
-                    tbb::simple_partitioner());
+  tbb::parallel_for(
+      tbb::blocked_range<int64_t>(0, count, 1),
+      [&](const tbb::blocked_range<int64_t>& r) {
+        for (int64_t i = r.begin(); i < r.end(); ++i) f(i);
+      },
+      tbb::simple_partitioner());
 }
 
 }  // namespace prism

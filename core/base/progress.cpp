@@ -1,10 +1,9 @@
 #include "base/progress.h"
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <cstdio>
-
-#include <fmt/format.h>
 
 namespace prism {
 
@@ -17,8 +16,12 @@ std::string format_seconds(double s) {
 }  // namespace
 
 Progress::Progress(std::string title, int64_t total, bool enabled)
-    : title_(std::move(title)), total_(total > 0 ? total : 1), enabled_(enabled), tty_(isatty(STDERR_FILENO)),
-      start_(std::chrono::steady_clock::now()), last_print_(start_) {}
+    : title_(std::move(title)),
+      total_(total > 0 ? total : 1),
+      enabled_(enabled),
+      tty_(isatty(STDERR_FILENO)),
+      start_(std::chrono::steady_clock::now()),
+      last_print_(start_) {}
 
 Progress::~Progress() { finish(); }
 

@@ -20,8 +20,10 @@ inline Vec3f offset_ray_origin(const Vec3f& p, const Vec3f& error, const Vec3f& 
   if (dot(w, n) < 0) offset = -offset;
   Vec3f po = p + offset;
   for (int i = 0; i < 3; ++i) {
-    if (offset[i] > 0) po[i] = next_float_up(po[i]);
-    else if (offset[i] < 0) po[i] = next_float_down(po[i]);
+    if (offset[i] > 0)
+      po[i] = next_float_up(po[i]);
+    else if (offset[i] < 0)
+      po[i] = next_float_down(po[i]);
   }
   return po;
 }

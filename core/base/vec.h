@@ -40,14 +40,31 @@ struct Vec3 {
   constexpr Vec3 operator*(T s) const { return {x * s, y * s, z * s}; }
   constexpr Vec3 operator/(T s) const { return {x / s, y / s, z / s}; }
   constexpr Vec3 operator-() const { return {-x, -y, -z}; }
-  constexpr Vec3& operator+=(const Vec3& b) { x += b.x; y += b.y; z += b.z; return *this; }
-  constexpr Vec3& operator-=(const Vec3& b) { x -= b.x; y -= b.y; z -= b.z; return *this; }
-  constexpr Vec3& operator*=(T s) { x *= s; y *= s; z *= s; return *this; }
+  constexpr Vec3& operator+=(const Vec3& b) {
+    x += b.x;
+    y += b.y;
+    z += b.z;
+    return *this;
+  }
+  constexpr Vec3& operator-=(const Vec3& b) {
+    x -= b.x;
+    y -= b.y;
+    z -= b.z;
+    return *this;
+  }
+  constexpr Vec3& operator*=(T s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
   constexpr bool operator==(const Vec3&) const = default;
 };
 
 template <typename T>
-constexpr Vec3<T> operator*(T s, const Vec3<T>& v) { return v * s; }
+constexpr Vec3<T> operator*(T s, const Vec3<T>& v) {
+  return v * s;
+}
 
 using Vec2f = Vec2<float>;
 using Vec2i = Vec2<int>;
@@ -55,9 +72,13 @@ using Vec3f = Vec3<float>;
 using Vec3d = Vec3<double>;
 
 template <typename T>
-constexpr T dot(const Vec3<T>& a, const Vec3<T>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr T dot(const Vec3<T>& a, const Vec3<T>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 template <typename T>
-constexpr T abs_dot(const Vec3<T>& a, const Vec3<T>& b) { return std::abs(dot(a, b)); }
+constexpr T abs_dot(const Vec3<T>& a, const Vec3<T>& b) {
+  return std::abs(dot(a, b));
+}
 
 // Cross product; each component is evaluated as a difference of products in double so that
 // nearly parallel float inputs do not lose the result to cancellation (pbrt-v4 §3.3.2).
@@ -70,13 +91,21 @@ inline Vec3d cross(const Vec3d& a, const Vec3d& b) {
 }
 
 template <typename T>
-constexpr T length_squared(const Vec3<T>& v) { return dot(v, v); }
+constexpr T length_squared(const Vec3<T>& v) {
+  return dot(v, v);
+}
 template <typename T>
-T length(const Vec3<T>& v) { return std::sqrt(dot(v, v)); }
+T length(const Vec3<T>& v) {
+  return std::sqrt(dot(v, v));
+}
 template <typename T>
-Vec3<T> normalize(const Vec3<T>& v) { return v / length(v); }
+Vec3<T> normalize(const Vec3<T>& v) {
+  return v / length(v);
+}
 template <typename T>
-T distance(const Vec3<T>& a, const Vec3<T>& b) { return length(a - b); }
+T distance(const Vec3<T>& a, const Vec3<T>& b) {
+  return length(a - b);
+}
 
 template <typename T>
 constexpr Vec3<T> min(const Vec3<T>& a, const Vec3<T>& b) {
@@ -87,19 +116,27 @@ constexpr Vec3<T> max(const Vec3<T>& a, const Vec3<T>& b) {
   return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
 }
 template <typename T>
-Vec3<T> abs(const Vec3<T>& v) { return {std::abs(v.x), std::abs(v.y), std::abs(v.z)}; }
+Vec3<T> abs(const Vec3<T>& v) {
+  return {std::abs(v.x), std::abs(v.y), std::abs(v.z)};
+}
 template <typename T>
-constexpr T max_component(const Vec3<T>& v) { return std::max(v.x, std::max(v.y, v.z)); }
+constexpr T max_component(const Vec3<T>& v) {
+  return std::max(v.x, std::max(v.y, v.z));
+}
 template <typename T>
 constexpr int max_dimension(const Vec3<T>& v) {
   return v.x > v.y ? (v.x > v.z ? 0 : 2) : (v.y > v.z ? 1 : 2);
 }
 template <typename T>
-constexpr Vec3<T> permute(const Vec3<T>& v, int i, int j, int k) { return {v[i], v[j], v[k]}; }
+constexpr Vec3<T> permute(const Vec3<T>& v, int i, int j, int k) {
+  return {v[i], v[j], v[k]};
+}
 
 // n flipped, if needed, to lie in the hemisphere of v.
 template <typename T>
-constexpr Vec3<T> face_forward(const Vec3<T>& n, const Vec3<T>& v) { return dot(n, v) < 0 ? -n : n; }
+constexpr Vec3<T> face_forward(const Vec3<T>& n, const Vec3<T>& v) {
+  return dot(n, v) < 0 ? -n : n;
+}
 
 inline bool is_finite(const Vec3f& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 

@@ -27,8 +27,8 @@ inline bool crosses_surface(const SurfaceInteraction& si, const Vec3f& wi) {
 template <int N>
 std::optional<LightContribution<N>> light_contribution(const World& world, const SurfaceInteraction& si,
                                                        const Frame& frame, const Bsdf<N>& bsdf, const Vec3f& wo,
-                                                       const Light& light, Vec2f u,
-                                                       const SampledWavelengths<N>& lambda, RayCounters& counters) {
+                                                       const Light& light, Vec2f u, const SampledWavelengths<N>& lambda,
+                                                       RayCounters& counters) {
   const auto sample = sample_li(light, LightSampleContext{si.p, si.p_error, si.n}, u, lambda);
   if (!sample || sample->L.is_zero() || crosses_surface(si, sample->wi)) return std::nullopt;
   const Vec3f wi = frame.to_local(sample->wi);

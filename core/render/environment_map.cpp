@@ -19,7 +19,8 @@ float luminance(Rgb c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 EnvironmentMapDesc load_environment_map(const std::filesystem::path& file, float rotation_degrees, float scale) {
   const std::string name = file.string();
   if (!std::isfinite(rotation_degrees)) fail("{}: the rotation must be a finite number of degrees", name);
-  if (!(scale >= 0 && std::isfinite(scale))) fail("{}: the scale must be finite and non-negative (got {})", name, scale);
+  if (!(scale >= 0 && std::isfinite(scale)))
+    fail("{}: the scale must be finite and non-negative (got {})", name, scale);
   if (!std::filesystem::is_regular_file(file)) fail("{}: no such file", name);
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
@@ -37,7 +38,9 @@ EnvironmentMapDesc load_environment_map(const std::filesystem::path& file, float
 }
 
 EnvironmentMap::EnvironmentMap(const EnvironmentMapDesc& desc)
-    : image_(desc.image), scale_(desc.scale), cos_rotation_(std::cos(desc.rotation)),
+    : image_(desc.image),
+      scale_(desc.scale),
+      cos_rotation_(std::cos(desc.rotation)),
       sin_rotation_(std::sin(desc.rotation)) {
   const int w = image_.width, h = image_.height;
   if (w < 1 || h < 1 || image_.rgb.size() != size_t(w) * h * 3) fail("{}: malformed environment image", desc.file);

@@ -50,9 +50,12 @@ void write_exr(const std::filesystem::path& file, const ExrImage& image, bool ha
     Imf::addChromaticities(header, Imf::Chromaticities({c.red[0], c.red[1]}, {c.green[0], c.green[1]},
                                                        {c.blue[0], c.blue[1]}, {c.white[0], c.white[1]}));
     for (const ExrAttribute& a : image.metadata) {
-      if (const auto* s = std::get_if<std::string>(&a.value)) header.insert(a.name, Imf::StringAttribute(*s));
-      else if (const auto* i = std::get_if<int>(&a.value)) header.insert(a.name, Imf::IntAttribute(*i));
-      else header.insert(a.name, Imf::DoubleAttribute(std::get<double>(a.value)));
+      if (const auto* s = std::get_if<std::string>(&a.value))
+        header.insert(a.name, Imf::StringAttribute(*s));
+      else if (const auto* i = std::get_if<int>(&a.value))
+        header.insert(a.name, Imf::IntAttribute(*i));
+      else
+        header.insert(a.name, Imf::DoubleAttribute(std::get<double>(a.value)));
     }
     const Imf::PixelType type = half ? Imf::HALF : Imf::FLOAT;
     const char* names[4] = {"R", "G", "B", "A"};
@@ -65,8 +68,10 @@ void write_exr(const std::filesystem::path& file, const ExrImage& image, bool ha
     for (size_t p = 0; p < pixels; ++p)
       for (int ch = 0; ch < 4; ++ch) {
         const float v = ch < 3 ? image.rgb[p * 3 + ch] : 1.f;
-        if (half) planes_h[ch * pixels + p] = Imath::half(v);
-        else planes_f[ch * pixels + p] = v;
+        if (half)
+          planes_h[ch * pixels + p] = Imath::half(v);
+        else
+          planes_f[ch * pixels + p] = v;
       }
     Imf::FrameBuffer fb;
     const size_t size = half ? sizeof(Imath::half) : sizeof(float);

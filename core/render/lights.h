@@ -24,7 +24,7 @@ template <int N>
 struct LightSample {
   SampledSpectrum<N> L;  // radiance arriving along wi (delta lights: irradiance normal to wi)
   Vec3f wi;
-  float pdf;             // solid-angle density; 1 for a delta light
+  float pdf;  // solid-angle density; 1 for a delta light
   Ray shadow_ray;
 };
 
@@ -97,7 +97,8 @@ struct SpotLightSource {
   float scale, offset;
 
   explicit SpotLightSource(const SpotLight& s)
-      : point{s.position, &s.intensity}, direction(s.direction),
+      : point{s.position, &s.intensity},
+        direction(s.direction),
         scale(1.f / std::max(1e-3f, std::cos(s.inner_angle) - std::cos(s.outer_angle))),
         offset(-std::cos(s.outer_angle) * scale) {}
 

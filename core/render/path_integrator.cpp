@@ -29,8 +29,8 @@ SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& s
 }  // namespace
 
 template <int N, bool Media, bool Dispersion>
-SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths<N>& lambda,
-                                 Sampler& sampler, const PathOptions& options, RayCounters& counters) {
+SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths<N>& lambda, Sampler& sampler,
+                                 const PathOptions& options, RayCounters& counters) {
   SampledSpectrum<N> L(0.f), beta(1.f);
   bool specular_bounce = false;
   float bsdf_pdf_prev = 0.f;  // solid-angle pdf of the BSDF sample that made `ray`
@@ -73,7 +73,8 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     const Bsdf<N> bsdf = make_bsdf<N, Dispersion>(material, si->at, lambda, front);
     const Frame frame = Frame::from_z(si->ns);
     const Vec3f wo = frame.to_local(si->wo);
-    if (options.next_event && !bsdf_is_specular(bsdf)) L += beta * sample_direct(world, *si, frame, bsdf, wo, lambda, sampler, counters);
+    if (options.next_event && !bsdf_is_specular(bsdf))
+      L += beta * sample_direct(world, *si, frame, bsdf, wo, lambda, sampler, counters);
 
     const float uc = sampler.get_1d();
     const auto bs = bsdf_sample_f(bsdf, wo, uc, sampler.get_2d());
@@ -100,13 +101,13 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
   return L;
 }
 
-#define PRISM_INSTANTIATE(N, MEDIA, DISPERSION)                                                           \
-  template SampledSpectrum<N> path_radiance<N, MEDIA, DISPERSION>(const World&, Ray, SampledWavelengths<N>&, \
-                                                                  Sampler&, const PathOptions&, RayCounters&);
-#define PRISM_INSTANTIATE_ALL(N)      \
-  PRISM_INSTANTIATE(N, false, false)  \
-  PRISM_INSTANTIATE(N, false, true)   \
-  PRISM_INSTANTIATE(N, true, false)   \
+#define PRISM_INSTANTIATE(N, MEDIA, DISPERSION)                                                                        \
+  template SampledSpectrum<N> path_radiance<N, MEDIA, DISPERSION>(const World&, Ray, SampledWavelengths<N>&, Sampler&, \
+                                                                  const PathOptions&, RayCounters&);
+#define PRISM_INSTANTIATE_ALL(N)     \
+  PRISM_INSTANTIATE(N, false, false) \
+  PRISM_INSTANTIATE(N, false, true)  \
+  PRISM_INSTANTIATE(N, true, false)  \
   PRISM_INSTANTIATE(N, true, true)
 PRISM_INSTANTIATE_ALL(1)
 PRISM_INSTANTIATE_ALL(4)

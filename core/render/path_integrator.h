@@ -25,7 +25,7 @@ struct PathFeatures {
 
 // Radiance arriving along `ray` at the path's wavelengths.
 template <int N, bool Media, bool Dispersion>
-SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths<N>& lambda,
-                                 Sampler& sampler, const PathOptions& options, RayCounters& counters);
+SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths<N>& lambda, Sampler& sampler,
+                                 const PathOptions& options, RayCounters& counters);
 
 }  // namespace prism

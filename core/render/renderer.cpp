@@ -39,8 +39,8 @@ RadianceFn<N> radiance_estimator(const World& world, const RenderOptions& option
 }
 
 template <int N>
-void render_tile(const World& world, const Camera& camera, const RenderOptions& options, RadianceFn<N> radiance,
-                 int x0, int y0, Film& film, TileStats& stats) {
+void render_tile(const World& world, const Camera& camera, const RenderOptions& options, RadianceFn<N> radiance, int x0,
+                 int y0, Film& film, TileStats& stats) {
   Sampler sampler(options.seed, options.sampler);
   const int x1 = std::min(x0 + kTileSize, camera.width()), y1 = std::min(y0 + kTileSize, camera.height());
   for (int y = y0; y < y1; ++y)
@@ -75,8 +75,8 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
     ThreadLimit limit(options.threads);
     parallel_for(int64_t(tiles_x) * tiles_y, [&](int64_t tile) {
       TileStats ts;
-      render_tile<N>(world, camera, options, radiance, int(tile % tiles_x) * kTileSize,
-                     int(tile / tiles_x) * kTileSize, film, ts);
+      render_tile<N>(world, camera, options, radiance, int(tile % tiles_x) * kTileSize, int(tile / tiles_x) * kTileSize,
+                     film, ts);
       {
         std::lock_guard lock(stats_mutex);
         stats.rays += ts.rays;
@@ -105,10 +105,14 @@ RenderResult render(const World& world, const Camera& camera, const RenderOption
   if (options.spp <= 0) fail("samples per pixel must be positive (got {})", options.spp);
   cie();  // load the colour tables before the threads start, so errors surface here
   switch (options.wavelengths) {
-    case 1: return render_with<1>(world, camera, options);
-    case 4: return render_with<4>(world, camera, options);
-    case 8: return render_with<8>(world, camera, options);
-    default: fail("wavelengths per path must be 1, 4 or 8 (got {})", options.wavelengths);
+    case 1:
+      return render_with<1>(world, camera, options);
+    case 4:
+      return render_with<4>(world, camera, options);
+    case 8:
+      return render_with<8>(world, camera, options);
+    default:
+      fail("wavelengths per path must be 1, 4 or 8 (got {})", options.wavelengths);
   }
 }
 

@@ -19,7 +19,7 @@ struct RenderOptions {
   IntegratorKind integrator = IntegratorKind::path;
   int spp = 16;
   uint64_t seed = 0;
-  int threads = 0;                  // 0: all hardware threads
+  int threads = 0;                        // 0: all hardware threads
   int wavelengths = kDefaultWavelengths;  // per path: 1, 4 or 8
   SamplerKind sampler = SamplerKind::independent;
   PathOptions path;
@@ -30,7 +30,7 @@ struct RenderOptions {
 struct RenderStats {
   RayCounters rays;
   uint64_t samples = 0;
-  uint64_t invalid_samples = 0;     // NaN or Inf estimates, counted and dropped (added as 0)
+  uint64_t invalid_samples = 0;  // NaN or Inf estimates, counted and dropped (added as 0)
   double seconds = 0;
 
   double samples_per_second() const { return seconds > 0 ? samples / seconds : 0; }
@@ -39,7 +39,7 @@ struct RenderStats {
 
 struct RenderResult {
   int width, height;
-  std::vector<float> xyz;           // interleaved, width × height × 3, top row first
+  std::vector<float> xyz;  // interleaved, width × height × 3, top row first
   RenderStats stats;
 };
 

@@ -25,20 +25,19 @@ SampledSpectrum<N> trace(const Context& c, const Ray& ray, const SampledWaveleng
 // Direct light at a diffuse surface: every delta (point, spot, directional) light, and one
 // power-sampled sample of the area lights and the environment (constant or image).
 template <int N>
-SampledSpectrum<N> direct_light(const Context& c, const SurfaceInteraction& si, const Frame& frame,
-                                const Bsdf<N>& bsdf, const Vec3f& wo, const SampledWavelengths<N>& lambda) {
+SampledSpectrum<N> direct_light(const Context& c, const SurfaceInteraction& si, const Frame& frame, const Bsdf<N>& bsdf,
+                                const Vec3f& wo, const SampledWavelengths<N>& lambda) {
   SampledSpectrum<N> L(0.f);
   const auto& lights = c.world.lights();
   for (uint32_t i : c.world.delta_lights())
-    if (const auto d = light_contribution(c.world, si, frame, bsdf, wo, lights[i], {}, lambda, c.counters))
-      L += d->f_L;
+    if (const auto d = light_contribution(c.world, si, frame, bsdf, wo, lights[i], {}, lambda, c.counters)) L += d->f_L;
   const PowerLightSampler& area = c.world.area_light_sampler();
   const float u_light = c.sampler.get_1d();
   const Vec2f u = c.sampler.get_2d();
   if (!area.empty()) {
     const uint32_t k = area.sample(u_light);
-    const auto d = light_contribution(c.world, si, frame, bsdf, wo, lights[c.world.area_lights()[k]], u, lambda,
-                                      c.counters);
+    const auto d =
+        light_contribution(c.world, si, frame, bsdf, wo, lights[c.world.area_lights()[k]], u, lambda, c.counters);
     if (d && area.pmf(k) > 0) L += d->f_L / (area.pmf(k) * d->light_pdf);
   }
   return L;
@@ -108,9 +107,9 @@ SampledSpectrum<N> whitted_radiance(const World& world, const Ray& ray, const Sa
   return trace(Context{world, sampler, options, counters}, ray, lambda, MediumStack{}, 0, 1.f);
 }
 
-#define PRISM_INSTANTIATE(N)                                                                  \
-  template SampledSpectrum<N> whitted_radiance<N>(const World&, const Ray&, const SampledWavelengths<N>&, \
-                                                  Sampler&, const PathOptions&, RayCounters&);
+#define PRISM_INSTANTIATE(N)                                                                                        \
+  template SampledSpectrum<N> whitted_radiance<N>(const World&, const Ray&, const SampledWavelengths<N>&, Sampler&, \
+                                                  const PathOptions&, RayCounters&);
 PRISM_INSTANTIATE(1)
 PRISM_INSTANTIATE(4)
 PRISM_INSTANTIATE(8)

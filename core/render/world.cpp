@@ -3,8 +3,8 @@
 #include <bit>
 
 #include "accel/triangle.h"
-#include "base/rng.h"
 #include "base/error.h"
+#include "base/rng.h"
 #include "spectral/cie.h"
 
 namespace prism {

@@ -11,25 +11,50 @@ namespace {
 int component_size(int component_type) {
   switch (component_type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
     case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;
   }
 }
 
 // One component as a double; normalized integers map to [0,1] or [−1,1] (glTF §3.11).
 double read_component(const unsigned char* p, int type, bool normalized) {
   switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float v; std::memcpy(&v, p, 4); return v; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return normalized ? v / 4294967295.0 : v; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return normalized ? v / 65535.0 : v; }
-    case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t v; std::memcpy(&v, p, 2); return normalized ? std::max(v / 32767.0, -1.0) : v; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0 : *p;
-    case TINYGLTF_COMPONENT_TYPE_BYTE: { const auto v = int8_t(*p); return normalized ? std::max(v / 127.0, -1.0) : v; }
-    default: return 0;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      uint32_t v;
+      std::memcpy(&v, p, 4);
+      return normalized ? v / 4294967295.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      uint16_t v;
+      std::memcpy(&v, p, 2);
+      return normalized ? v / 65535.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      int16_t v;
+      std::memcpy(&v, p, 2);
+      return normalized ? std::max(v / 32767.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return normalized ? *p / 255.0 : *p;
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      const auto v = int8_t(*p);
+      return normalized ? std::max(v / 127.0, -1.0) : v;
+    }
+    default:
+      return 0;
   }
 }
 
@@ -44,7 +69,8 @@ const unsigned char* view_elements(const tinygltf::Model& model, int view_index,
     fail("{}: buffer {} does not exist", what, view.buffer);
   const tinygltf::Buffer& buffer = model.buffers[view.buffer];
   stride = view.byteStride ? view.byteStride : element_size;
-  if (stride < element_size) fail("{}: byteStride {} is smaller than an element ({} bytes)", what, stride, element_size);
+  if (stride < element_size)
+    fail("{}: byteStride {} is smaller than an element ({} bytes)", what, stride, element_size);
   const size_t needed = count == 0 ? 0 : offset + stride * (count - 1) + element_size;
   if (count > view.byteLength || needed > view.byteLength || view.byteOffset + view.byteLength > buffer.data.size())
     fail("{}: accessor reads past the end of its data (needs {} bytes of bufferView {} holding {}, buffer holds {})",
@@ -91,8 +117,8 @@ std::vector<T> read_accessor(const tinygltf::Model& model, int index, int compon
       fail("{}: sparse indices of accessor {} have an invalid type", what, index);
     const auto* ibase = view_elements(model, sp.indices.bufferView, sp.indices.byteOffset, size_t(sp.count),
                                       size_t(isize), istride, what + " (sparse indices)");
-    const auto* vbase = view_elements(model, sp.values.bufferView, sp.values.byteOffset, size_t(sp.count),
-                                      element_size, vstride, what + " (sparse values)");
+    const auto* vbase = view_elements(model, sp.values.bufferView, sp.values.byteOffset, size_t(sp.count), element_size,
+                                      vstride, what + " (sparse values)");
     read_elements(vbase, vstride, size_t(sp.count), [&](size_t i) {
       const auto target = size_t(read_component(ibase + i * istride, sp.indices.componentType, false));
       if (target >= acc.count) fail("{}: sparse index {} out of range (count {})", what, target, acc.count);

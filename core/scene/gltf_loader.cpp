@@ -17,9 +17,15 @@ namespace {
 
 // Extensions whose meaning Prism implements. A file that requires any other is refused.
 const std::set<std::string> kSupportedExtensions = {
-    "KHR_materials_emissive_strength", "KHR_lights_punctual",   "KHR_materials_transmission",
-    "KHR_materials_ior",               "KHR_materials_volume", "KHR_materials_dispersion",
-    "KHR_materials_specular",          "KHR_texture_transform", "KHR_mesh_quantization",
+    "KHR_materials_emissive_strength",
+    "KHR_lights_punctual",
+    "KHR_materials_transmission",
+    "KHR_materials_ior",
+    "KHR_materials_volume",
+    "KHR_materials_dispersion",
+    "KHR_materials_specular",
+    "KHR_texture_transform",
+    "KHR_mesh_quantization",
 };
 
 // A number from a material extension's object, or the extension's default.
@@ -53,7 +59,10 @@ bool all_finite(const std::vector<double>& v) {
 class GltfLoader {
  public:
   GltfLoader(const tinygltf::Model& model, const std::filesystem::path& file, Scene& scene)
-      : model_(model), file_(file.string()), scene_(scene), meshes_(model.meshes.size()),
+      : model_(model),
+        file_(file.string()),
+        scene_(scene),
+        meshes_(model.meshes.size()),
         mesh_loaded_(model.meshes.size(), false) {}
 
   void load() {
@@ -92,19 +101,23 @@ class GltfLoader {
     PbrMaterial surface_model = surface(m, Rgb{float(bc[0]), float(bc[1]), float(bc[2])}, context);
     surface_model.alpha = std::clamp(float(bc[3]), 0.f, 1.f);
     const auto& pbr = m.pbrMetallicRoughness;
-    surface_model.base_color_texture = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
-                                               pbr.baseColorTexture.extensions, context);
+    surface_model.base_color_texture =
+        texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions, context);
     surface_model.metallic_roughness_texture =
         texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
                 pbr.metallicRoughnessTexture.extensions, context);
-    surface_model.transmission_texture = extension_texture(m, "KHR_materials_transmission", "transmissionTexture", context);
+    surface_model.transmission_texture =
+        extension_texture(m, "KHR_materials_transmission", "transmissionTexture", context);
     surface_model.thickness_texture = extension_texture(m, "KHR_materials_volume", "thicknessTexture", context);
     out.kind = std::move(surface_model);
     out.normal_texture = texture(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions, context);
     out.normal_scale = float(m.normalTexture.scale);
-    if (m.alphaMode == "MASK") out.alpha_mode = AlphaMode::mask;
-    else if (m.alphaMode == "BLEND") out.alpha_mode = AlphaMode::blend;
-    else if (m.alphaMode != "OPAQUE") fail("{}: {}: unknown alphaMode '{}'", file_, context, m.alphaMode);
+    if (m.alphaMode == "MASK")
+      out.alpha_mode = AlphaMode::mask;
+    else if (m.alphaMode == "BLEND")
+      out.alpha_mode = AlphaMode::blend;
+    else if (m.alphaMode != "OPAQUE")
+      fail("{}: {}: unknown alphaMode '{}'", file_, context, m.alphaMode);
     out.alpha_cutoff = float(m.alphaCutoff);
     const auto& ef = m.emissiveFactor;
     if (ef.size() != 3 || !all_finite(ef)) fail("{}: {}: emissiveFactor must be 3 finite numbers", file_, context);
@@ -118,7 +131,8 @@ class GltfLoader {
     out.emission_rgb = {float(ef[0] * strength), float(ef[1] * strength), float(ef[2] * strength)};
     if (out.emission_rgb.max() > 0) {
       out.emission = RgbIlluminantSpectrum(out.emission_rgb);
-      out.emission_texture = texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions, context);
+      out.emission_texture =
+          texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions, context);
     }
     return out;
   }
@@ -164,7 +178,8 @@ class GltfLoader {
       const auto vec2 = [&](const char* key, Vec2f fallback) {
         if (!x.Has(key)) return fallback;
         const auto& v = x.Get(key);
-        if (!v.IsArray() || v.ArrayLen() != 2) fail("{}: {}: KHR_texture_transform.{} must hold 2 numbers", file_, context, key);
+        if (!v.IsArray() || v.ArrayLen() != 2)
+          fail("{}: {}: KHR_texture_transform.{} must hold 2 numbers", file_, context, key);
         return Vec2f(float(v.Get(0).GetNumberAsDouble()), float(v.Get(1).GetNumberAsDouble()));
       };
       out.transform.offset = vec2("offset", {0, 0});
@@ -172,7 +187,8 @@ class GltfLoader {
       if (x.Has("rotation")) out.transform.rotation = float(x.Get("rotation").GetNumberAsDouble());
       if (x.Has("texCoord")) out.texcoord = x.Get("texCoord").GetNumberAsInt();
     }
-    if (out.texcoord < 0 || out.texcoord > 1) fail("{}: {}: texture coordinate set {} (Prism reads TEXCOORD_0 and _1)", file_, context, out.texcoord);
+    if (out.texcoord < 0 || out.texcoord > 1)
+      fail("{}: {}: texture coordinate set {} (Prism reads TEXCOORD_0 and _1)", file_, context, out.texcoord);
     return out;
   }
 
@@ -313,21 +329,25 @@ class GltfLoader {
     for (int set = 0; set < 2; ++set)
       if (const auto uv = prim.attributes.find("TEXCOORD_" + std::to_string(set)); uv != prim.attributes.end()) {
         const auto t = read_accessor_floats(model_, uv->second, 2, fmt::format("{} TEXCOORD_{}", context, set));
-        if (t.size() / 2 != mesh.positions.size()) fail("{} TEXCOORD_{}: {} entries for {} vertices", context, set, t.size() / 2, mesh.positions.size());
+        if (t.size() / 2 != mesh.positions.size())
+          fail("{} TEXCOORD_{}: {} entries for {} vertices", context, set, t.size() / 2, mesh.positions.size());
         for (size_t i = 0; i < t.size(); i += 2) mesh.uv[set].push_back({t[i], t[i + 1]});
       }
     if (const auto col = prim.attributes.find("COLOR_0"); col != prim.attributes.end()) {
       const int components = accessor_components(model_, col->second, context + " COLOR_0");
       if (components != 3 && components != 4) fail("{} COLOR_0: must be VEC3 or VEC4", context);
       const auto c = read_accessor_floats(model_, col->second, components, context + " COLOR_0");
-      if (c.size() / components != mesh.positions.size()) fail("{} COLOR_0: {} colours for {} vertices", context, c.size() / components, mesh.positions.size());
+      if (c.size() / components != mesh.positions.size())
+        fail("{} COLOR_0: {} colours for {} vertices", context, c.size() / components, mesh.positions.size());
       for (size_t i = 0; i < c.size(); i += components)
         mesh.colors.push_back({c[i], c[i + 1], c[i + 2], components == 4 ? c[i + 3] : 1.f});
     }
     if (const auto tan = prim.attributes.find("TANGENT"); tan != prim.attributes.end()) {
       const auto t = read_accessor_floats(model_, tan->second, 4, context + " TANGENT");
-      if (t.size() / 4 != mesh.positions.size()) fail("{} TANGENT: {} tangents for {} vertices", context, t.size() / 4, mesh.positions.size());
-      for (size_t i = 0; i < t.size(); i += 4) mesh.tangents.push_back({t[i], t[i + 1], t[i + 2], t[i + 3] < 0 ? -1.f : 1.f});
+      if (t.size() / 4 != mesh.positions.size())
+        fail("{} TANGENT: {} tangents for {} vertices", context, t.size() / 4, mesh.positions.size());
+      for (size_t i = 0; i < t.size(); i += 4)
+        mesh.tangents.push_back({t[i], t[i + 1], t[i + 2], t[i + 3] < 0 ? -1.f : 1.f});
     }
     if (prim.indices >= 0) {
       mesh.indices = read_accessor_indices(model_, prim.indices, context + " indices");
@@ -362,7 +382,8 @@ class GltfLoader {
       t = Transform::translate({node.translation[0], node.translation[1], node.translation[2]});
     }
     if (!node.rotation.empty()) {
-      if (node.rotation.size() != 4 || !all_finite(node.rotation)) fail("{}: rotation must be 4 finite numbers", context);
+      if (node.rotation.size() != 4 || !all_finite(node.rotation))
+        fail("{}: rotation must be 4 finite numbers", context);
       t = t * Transform::rotate(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]);
     }
     if (!node.scale.empty()) {
@@ -426,13 +447,15 @@ class GltfLoader {
     c.to_world = world;
     if (cam.type == "perspective") {
       c.yfov = float(cam.perspective.yfov);
-      if (!(c.yfov > 0 && c.yfov < kPi)) fail("{}: camera '{}' has yfov {} (needs 0 < yfov < π)", context, cam.name, c.yfov);
+      if (!(c.yfov > 0 && c.yfov < kPi))
+        fail("{}: camera '{}' has yfov {} (needs 0 < yfov < π)", context, cam.name, c.yfov);
       if (cam.perspective.aspectRatio > 0) c.aspect = float(cam.perspective.aspectRatio);
     } else if (cam.type == "orthographic") {
       c.projection = CameraDesc::Projection::orthographic;
       c.xmag = float(std::abs(cam.orthographic.xmag));
       c.ymag = float(std::abs(cam.orthographic.ymag));
-      if (!(c.xmag > 0 && c.ymag > 0)) fail("{}: orthographic camera '{}' needs non-zero xmag and ymag", context, cam.name);
+      if (!(c.xmag > 0 && c.ymag > 0))
+        fail("{}: orthographic camera '{}' needs non-zero xmag and ymag", context, cam.name);
       c.aspect = c.xmag / c.ymag;
     } else {
       fail("{}: camera '{}' has unknown type '{}'", context, cam.name, cam.type);
@@ -446,7 +469,8 @@ class GltfLoader {
   void add_light(const tinygltf::Light& light, const Transform& world, const std::string& context) {
     Rgb color{1, 1, 1};
     if (!light.color.empty()) {
-      if (light.color.size() != 3 || !all_finite(light.color)) fail("{}: light color must be 3 finite numbers", context);
+      if (light.color.size() != 3 || !all_finite(light.color))
+        fail("{}: light color must be 3 finite numbers", context);
       color = {float(light.color[0]), float(light.color[1]), float(light.color[2])};
     }
     if (!std::isfinite(light.intensity) || light.intensity < 0)
@@ -462,8 +486,8 @@ class GltfLoader {
     } else if (light.type == "spot") {
       const double inner = light.spot.innerConeAngle, outer = light.spot.outerConeAngle;
       if (!(inner >= 0 && inner <= outer && outer <= kPi / 2 + 1e-6))
-        fail("{}: spot light '{}' needs 0 ≤ innerConeAngle ≤ outerConeAngle ≤ π/2 (got {} and {})", context,
-             light.name, inner, outer);
+        fail("{}: spot light '{}' needs 0 ≤ innerConeAngle ≤ outerConeAngle ≤ π/2 (got {} and {})", context, light.name,
+             inner, outer);
       scene_.spot_lights.push_back({light.name, position, direction, float(inner), float(outer), emission});
     } else if (light.type == "directional") {
       scene_.directional_lights.push_back({light.name, direction, emission});

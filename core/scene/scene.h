@@ -41,10 +41,10 @@ struct CameraDesc {
   enum class Projection { perspective, orthographic };
   std::string name;
   Projection projection = Projection::perspective;
-  Transform to_world;              // looks down local −z, +y up (glTF convention)
-  float yfov = 0.f;                // perspective: vertical field of view [radians]
-  std::optional<float> aspect;     // width / height, if the file gives one
-  float xmag = 1.f, ymag = 1.f;    // orthographic half extents
+  Transform to_world;            // looks down local −z, +y up (glTF convention)
+  float yfov = 0.f;              // perspective: vertical field of view [radians]
+  std::optional<float> aspect;   // width / height, if the file gives one
+  float xmag = 1.f, ymag = 1.f;  // orthographic half extents
 };
 
 // Punctual lights (KHR_lights_punctual). Units as in the README: luminance Y = 1 ↔ 1 cd/m² for
@@ -62,17 +62,17 @@ struct PointLight {
 struct SpotLight {
   std::string name;
   Vec3f position;
-  Vec3f direction;                    // unit cone axis, the way the light shines
-  float inner_angle = 0.f;            // [radians], 0 ≤ inner ≤ outer ≤ π/2
+  Vec3f direction;          // unit cone axis, the way the light shines
+  float inner_angle = 0.f;  // [radians], 0 ≤ inner ≤ outer ≤ π/2
   float outer_angle = kPi / 4;
-  Spectrum intensity;                 // on the axis
+  Spectrum intensity;  // on the axis
 };
 
 // Parallel light from a source at infinity; illuminance is the spectral irradiance on a surface
 // facing the light.
 struct DirectionalLight {
   std::string name;
-  Vec3f direction;                    // unit, the way the light travels
+  Vec3f direction;  // unit, the way the light travels
   Spectrum illuminance;
 };
 
@@ -81,8 +81,8 @@ struct DirectionalLight {
 struct EnvironmentMapDesc {
   std::string file;
   RgbImage image;
-  float rotation = 0.f;               // about +Y, right-handed [radians]
-  float scale = 1.f;                  // multiplies every texel
+  float rotation = 0.f;  // about +Y, right-handed [radians]
+  float scale = 1.f;     // multiplies every texel
 };
 
 struct Scene {
@@ -93,12 +93,12 @@ struct Scene {
   std::vector<PointLight> point_lights;
   std::vector<SpotLight> spot_lights;
   std::vector<DirectionalLight> directional_lights;
-  std::vector<CameraDesc> cameras;     // in scene traversal order
-  std::optional<Spectrum> environment; // constant radiance from every direction
+  std::vector<CameraDesc> cameras;                    // in scene traversal order
+  std::optional<Spectrum> environment;                // constant radiance from every direction
   std::optional<EnvironmentMapDesc> environment_map;  // at most one of environment, environment_map
 
   Bounds3f world_bounds() const;
-  size_t triangle_count() const;       // over all instances
+  size_t triangle_count() const;  // over all instances
 };
 
 }  // namespace prism

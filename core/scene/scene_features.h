@@ -13,8 +13,8 @@ struct SceneFeatures {
   bool point_lights = false;
   bool spot_lights = false;
   bool directional_lights = false;
-  bool environment = false;      // constant radiance
-  bool environment_map = false;  // an equirectangular image
+  bool environment = false;         // constant radiance
+  bool environment_map = false;     // an equirectangular image
   bool dielectric_volumes = false;  // closed transmissive dielectrics: paths enter and leave them
   bool dispersion = false;          // a dielectric whose index varies with wavelength
   bool absorption = false;          // a closed dielectric volume with Beer–Lambert absorption

@@ -5,8 +5,9 @@
 // of boxes, from inside boxes, at huge and tiny coordinates), on degenerate and coincident
 // triangles, on pathological distributions, through instances, and for watertightness.
 
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+
+#include <catch2/catch.hpp>
 
 #include "accel/accel.h"
 #include "accel/triangle.h"
@@ -159,10 +160,10 @@ Soup adversarial_scene() {
   for (int x = -4; x < 4; ++x)
     for (int z = -4; z < 4; ++z) s.add(test::make_quad({float(x), -1, float(z)}, {1, 0, 0}, {0, 0, 1}, 0));
   s.add(test::make_icosphere({3, 1, 2}, 1.f, 2, 0));
-  s.add({-3, 2, -3}, {3, 2.001f, -3}, {3, 2, -2.999f});          // long and thin
-  s.add({-3, 3, 0}, {3, 3, 0}, {0, 3, 0});                        // zero area: collinear
-  s.add({1, 1, 1}, {1, 1, 1}, {1, 1, 1});                         // zero area: one point
-  s.add({0, 0, 0}, {1, 0, 0}, {1, 1, 0});                         // coincides with a cube face's triangle
+  s.add({-3, 2, -3}, {3, 2.001f, -3}, {3, 2, -2.999f});  // long and thin
+  s.add({-3, 3, 0}, {3, 3, 0}, {0, 3, 0});               // zero area: collinear
+  s.add({1, 1, 1}, {1, 1, 1}, {1, 1, 1});                // zero area: one point
+  s.add({0, 0, 0}, {1, 0, 0}, {1, 1, 0});                // coincides with a cube face's triangle
   return s;
 }
 
@@ -174,8 +175,12 @@ std::vector<Ray> adversarial_rays(const Soup& s, Rng& rng) {
     const Triangle tri = s.triangle(size_t(rng.uniform() * float(n)) % n);
     const Vec3f o = random_in(rng, -6, 6);
     switch (i % 6) {
-      case 0: rays.push_back({o, normalize(tri[0] - o), kInfinity}); break;                    // at a vertex
-      case 1: rays.push_back({o, normalize((tri[0] + tri[1]) * 0.5f - o), kInfinity}); break;  // at an edge
+      case 0:
+        rays.push_back({o, normalize(tri[0] - o), kInfinity});
+        break;  // at a vertex
+      case 1:
+        rays.push_back({o, normalize((tri[0] + tri[1]) * 0.5f - o), kInfinity});
+        break;   // at an edge
       case 2: {  // along an edge, from outside it or from its first vertex
         const Vec3f e = tri[1] - tri[0];
         if (length(e) == 0.f) continue;
@@ -189,10 +194,12 @@ std::vector<Ray> adversarial_rays(const Soup& s, Rng& rng) {
         rays.push_back({g, d, kInfinity});
         break;
       }
-      case 4: rays.push_back({random_in(rng, 0.f, 2.f), sample_uniform_sphere({rng.uniform(), rng.uniform()}),
-                              rng.uniform() < 0.5f ? 0.7f : kInfinity});  // from inside the boxes
+      case 4:
+        rays.push_back({random_in(rng, 0.f, 2.f), sample_uniform_sphere({rng.uniform(), rng.uniform()}),
+                        rng.uniform() < 0.5f ? 0.7f : kInfinity});  // from inside the boxes
         break;
-      default: rays.push_back({o, sample_uniform_sphere({rng.uniform(), rng.uniform()}), kInfinity});
+      default:
+        rays.push_back({o, sample_uniform_sphere({rng.uniform(), rng.uniform()}), kInfinity});
     }
   }
   return rays;
@@ -344,8 +351,8 @@ TEST_CASE("rays from inside a closed mesh never escape (watertight)") {
     float scale;
     Vec3f offset;
   };
-  for (const Placement pl : {Placement{1, {0.1f, -0.2f, 0.3f}}, Placement{1e-6f, {2e-6f, 0, 0}},
-                             Placement{1e5f, {3e6f, -1e6f, 2e6f}}}) {
+  for (const Placement pl :
+       {Placement{1, {0.1f, -0.2f, 0.3f}}, Placement{1e-6f, {2e-6f, 0, 0}}, Placement{1e5f, {3e6f, -1e6f, 2e6f}}}) {
     INFO("scale " << pl.scale);
     const Mesh sphere = test::make_icosphere(pl.offset, 2.f * pl.scale, 4, 0);
     Soup soup;

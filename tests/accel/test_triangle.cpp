@@ -110,12 +110,12 @@ TEST_CASE("the test respects tmax, and unused or degenerate lanes never hit") {
   const Vec3f v0(-1, -1, 0), v1(1, -1, 0), v2(0, 1, 0);
   const Ray ray{{0, 0, 1}, {0, 0, -1}, kInfinity};
   CHECK(test_one(ray, v0, v1, v2).mask == 1);
-  CHECK(test_one({ray.o, ray.d, 1.f}, v0, v1, v2).mask == 1);     // t = tmax: a candidate (ties)
+  CHECK(test_one({ray.o, ray.d, 1.f}, v0, v1, v2).mask == 1);  // t = tmax: a candidate (ties)
   CHECK(test_one({ray.o, ray.d, 0.999f}, v0, v1, v2).mask == 0);
   CHECK(test_one({{0, 0, -1}, ray.d, kInfinity}, v0, v1, v2).mask == 0);  // behind the origin
   CHECK(test_one({{0, 0, 0}, ray.d, kInfinity}, v0, v1, v2).mask == 0);   // t = 0
   CHECK(intersect_triangles(WatertightRay(ray), TriangleBlock{}, kInfinity).mask == 0);
-  CHECK(test_one(ray, v0, v1, (v0 + v1) * 0.5f).mask == 0);               // zero area
+  CHECK(test_one(ray, v0, v1, (v0 + v1) * 0.5f).mask == 0);  // zero area
   CHECK(test_one(ray, v0, v0, v0).mask == 0);
   CHECK(test_one({{0, 0, 0}, {1, 0, 0}, kInfinity}, v0, v1, v2).mask == 0);  // in the triangle's plane
 }

@@ -1,13 +1,10 @@
 // The prism command line: subcommands' output formats and errors.
 
 #include <catch2/catch.hpp>
-
-#include <fstream>
-
-#include "render/image_output.h"
 #include <fstream>
 #include <sstream>
 
+#include "render/image_output.h"
 #include "support/test_scenes.h"
 
 using namespace prism;
@@ -42,12 +39,17 @@ TEST_CASE("prism render --env-map: renders with an image, and refuses bad files 
   const auto dir = test::temp_dir("env_cli");
   const std::string scene = "render \"" PRISM_SOURCE_DIR "/data/scenes/cornell.gltf\" --spp 1 --width 8 --height 8 -o ";
   const auto sky = dir / "sky.exr", out = dir / "out.exr";
-  write_exr(sky, {4, 2, std::vector<float>(4 * 2 * 3, 0.5f),
-                  ColorPipeline::standard().chromaticities(ColorPipeline::kDefaultOutput), {}},
+  write_exr(sky,
+            {4,
+             2,
+             std::vector<float>(4 * 2 * 3, 0.5f),
+             ColorPipeline::standard().chromaticities(ColorPipeline::kDefaultOutput),
+             {}},
             false);
   std::string err;
   const int code = test::run_prism(
-      scene + "\"" + out.string() + "\" --env-map \"" + sky.string() + "\" --env-rotate 90 --env-scale 2 --quiet", &err);
+      scene + "\"" + out.string() + "\" --env-map \"" + sky.string() + "\" --env-rotate 90 --env-scale 2 --quiet",
+      &err);
   INFO(err);
   CHECK(code == 0);
   CHECK(std::filesystem::exists(out));
@@ -80,9 +82,11 @@ TEST_CASE("prism render --env-map: renders with an image, and refuses bad files 
 TEST_CASE("prism converge writes the error table, the plot and the summary") {
   const auto dir = test::temp_dir("converge");
   std::string err;
-  const int code = test::run_prism("converge \"" PRISM_SOURCE_DIR "/data/scenes/cornell.gltf\" --width 16 --height 16 "
-                                   "--max-spp 4 --reference-spp 16 --reference \"" + (dir / "ref.exr").string() +
-                                   "\" --out \"" + dir.string() + "\"", &err);
+  const int code = test::run_prism("converge \"" PRISM_SOURCE_DIR
+                                   "/data/scenes/cornell.gltf\" --width 16 --height 16 "
+                                   "--max-spp 4 --reference-spp 16 --reference \"" +
+                                       (dir / "ref.exr").string() + "\" --out \"" + dir.string() + "\"",
+                                   &err);
   INFO(err);
   REQUIRE(code == 0);
   CHECK(std::filesystem::exists(dir / "ref.exr"));
@@ -100,5 +104,6 @@ TEST_CASE("prism converge writes the error table, the plot and the summary") {
   CHECK(summary.str().find("Sobol sampler") != std::string::npos);
   // A reference of another size is refused.
   CHECK(test::run_prism("converge \"" PRISM_SOURCE_DIR "/data/scenes/cornell.gltf\" --width 8 --height 8 --max-spp 1 "
-                        "--reference \"" + (dir / "ref.exr").string() + "\" --out \"" + dir.string() + "\"") == 1);
+                        "--reference \"" +
+                        (dir / "ref.exr").string() + "\" --out \"" + dir.string() + "\"") == 1);
 }

@@ -11,8 +11,8 @@
 using namespace prism;
 
 TEST_CASE("transforms compose and invert") {
-  const Transform t = Transform::translate({1, 2, 3}) * Transform::rotate(0.1, 0.7, -0.2, 0.68) *
-                      Transform::scale({2, -0.5, 3});
+  const Transform t =
+      Transform::translate({1, 2, 3}) * Transform::rotate(0.1, 0.7, -0.2, 0.68) * Transform::scale({2, -0.5, 3});
   const Transform round = t * inverse(t);
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) CHECK(round.m[i][j] == Approx(i == j ? 1 : 0).margin(1e-12));

@@ -61,7 +61,9 @@ TEST_CASE("2D piecewise-constant sampling: pdf matches the samples and integrate
   for (size_t i = 0; i < f.size(); ++i) {
     const double p = f[i] / total, sigma = std::sqrt(kSamples * p * (1 - p));
     INFO("cell " << i);
-    if (f[i] == 0) CHECK(counts[i] == 0);
-    else CHECK(std::abs(counts[i] - kSamples * p) <= 5 * sigma);
+    if (f[i] == 0)
+      CHECK(counts[i] == 0);
+    else
+      CHECK(std::abs(counts[i] - kSamples * p) <= 5 * sigma);
   }
 }

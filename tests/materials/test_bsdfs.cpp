@@ -85,7 +85,9 @@ TEST_CASE("Lambertian BSDF: reciprocal, albedo R, sampling follows its pdf (chi-
 TEST_CASE("the chi-square test rejects a sampler that does not follow its pdf") {
   // Uniform-hemisphere samples checked against the cosine pdf must fail.
   const auto result = test::chi2_test(
-      [](float, float u2, float u3) -> std::optional<Vec3f> { return sample_uniform_hemisphere({u2, u3}); },
+      [](float, float u2, float u3) -> std::optional<Vec3f> {
+        return sample_uniform_hemisphere({u2, u3});
+      },
       [](const Vec3f& w) { return w.z > 0 ? double(cosine_hemisphere_pdf(w.z)) : 0.0; });
   CHECK_FALSE(result.passed);
 }

@@ -8,7 +8,6 @@
 // Tolerances are 4 standard errors of the estimates (from their sample variance), not tuned.
 
 #include <catch2/catch.hpp>
-
 #include <functional>
 
 #include "base/rng.h"
@@ -26,8 +25,8 @@ struct Case {
   std::string name;
   std::function<Bsdf<N>()> make;
   bool lossless = false;
-  float eta = 1;        // relative index of a solid dielectric (transmission scales radiance by 1/η'²)
-  bool sharp = false;   // lobes of roughness < 0.2 are too narrow for uniform sampling to resolve
+  float eta = 1;       // relative index of a solid dielectric (transmission scales radiance by 1/η'²)
+  bool sharp = false;  // lobes of roughness < 0.2 are too narrow for uniform sampling to resolve
 };
 
 SampledWavelengths<N> wavelengths() { return SampledWavelengths<N>::sample(0.37f); }
@@ -42,35 +41,50 @@ std::vector<Case> cases() {
   std::vector<Case> c;
   c.push_back({"Lambert albedo 1", [] { return Bsdf<N>(DiffuseBsdf<N>(SampledSpectrum<N>(1.f))); }, true});
   c.push_back({"Lambert albedo 0.5", [] { return Bsdf<N>(DiffuseBsdf<N>(SampledSpectrum<N>(0.5f))); }});
-  c.push_back({"smooth glass 1.5", [] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{1.5f}))); }, true, 1.5f});
-  c.push_back({"smooth glass seen from water", [] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{1.5f})), 1.33f); },
-               true, 1.5f / 1.33f});
-  c.push_back({"smooth thin glass", [] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{1.5f}, {}, true))); }, true});
+  c.push_back(
+      {"smooth glass 1.5", [] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{1.5f}))); }, true, 1.5f});
+  c.push_back({"smooth glass seen from water",
+               [] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{1.5f})), 1.33f); }, true, 1.5f / 1.33f});
+  c.push_back(
+      {"smooth thin glass", [] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{1.5f}, {}, true))); }, true});
   const MeasuredMetal cu = MaterialCatalogue::standard().metal("Cu");
   for (float roughness : {0.05f, 0.3f, 1.f}) {
     const std::string r = " roughness " + std::to_string(roughness).substr(0, 4);
     const bool sharp = roughness < 0.2f;
     c.push_back({"Cu" + r, [=] { return bsdf_of(PbrMaterial::metal_of(cu, roughness)); }, false, 1, sharp});
-    c.push_back({"gold-coloured metal" + r, [=] { return bsdf_of(PbrMaterial::metal_of(Rgb{1, 0.78f, 0.34f}, roughness)); },
+    c.push_back({"gold-coloured metal" + r,
+                 [=] {
+                   return bsdf_of(PbrMaterial::metal_of(Rgb{1, 0.78f, 0.34f}, roughness));
+                 },
                  false, 1, sharp});
     c.push_back({"glass 1.5" + r, [=] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{1.5f}), roughness)); },
                  false, 1.5f, sharp});
-    c.push_back({"diamond 2.42" + r, [=] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{2.42f}), roughness)); },
-                 false, 2.42f, sharp});
-    c.push_back({"thin glass" + r, [=] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{1.5f}, {}, true), roughness)); },
+    c.push_back({"diamond 2.42" + r,
+                 [=] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{2.42f}), roughness)); }, false, 2.42f,
+                 sharp});
+    c.push_back({"thin glass" + r,
+                 [=] { return bsdf_of(PbrMaterial::glass(Dielectric(ConstantIor{1.5f}, {}, true), roughness)); }, false,
+                 1, sharp});
+    c.push_back({"white plastic" + r,
+                 [=] {
+                   return bsdf_of(PbrMaterial::plastic(Rgb{1, 1, 1}, roughness));
+                 },
                  false, 1, sharp});
-    c.push_back({"white plastic" + r, [=] { return bsdf_of(PbrMaterial::plastic(Rgb{1, 1, 1}, roughness)); }, false, 1, sharp});
-    c.push_back({"half-metal" + r, [=] {
+    c.push_back({"half-metal" + r,
+                 [=] {
                    PbrMaterial m = PbrMaterial::plastic(Rgb{0.8f, 0.5f, 0.3f}, roughness);
                    m.metallic = 0.5f;
                    return bsdf_of(m);
-                 }, false, 1, sharp});
-    c.push_back({"half-transmissive, specular 0.5" + r, [=] {
+                 },
+                 false, 1, sharp});
+    c.push_back({"half-transmissive, specular 0.5" + r,
+                 [=] {
                    PbrMaterial m = PbrMaterial::plastic(Rgb{0.9f, 0.9f, 0.9f}, roughness);
                    m.transmission = 0.5f;
                    m.specular = 0.5f;
                    return bsdf_of(m);
-                 }, false, 1.5f, sharp});
+                 },
+                 false, 1.5f, sharp});
   }
   c.push_back({"white plastic smooth", [] { return bsdf_of(PbrMaterial::plastic(Rgb{1, 1, 1}, 0)); }});
   return c;
@@ -91,7 +105,8 @@ struct Accumulator {
   }
   Estimate result() const {
     Estimate e{sum / float(n), {}};
-    for (int i = 0; i < N; ++i) e.standard_error[i] = std::sqrt(std::max(0.f, sum_sq[i] / n - sqr(e.mean[i])) / (n - 1));
+    for (int i = 0; i < N; ++i)
+      e.standard_error[i] = std::sqrt(std::max(0.f, sum_sq[i] / n - sqr(e.mean[i])) / (n - 1));
     return e;
   }
 };
@@ -135,7 +150,8 @@ TEST_CASE("every BSDF conserves energy: albedo <= 1 by its own and by uniform sa
       const Vec3f wo(std::sqrt(1 - cos_o * cos_o), 0, cos_o);
       const Estimate own = albedo_own_sampling(c, b, wo, 40000, rng);
       for (int i = 0; i < N; ++i) {
-        INFO(c.name << ", cos θo " << cos_o << ", lane " << i << ": albedo " << own.mean[i] << " ± " << own.standard_error[i]);
+        INFO(c.name << ", cos θo " << cos_o << ", lane " << i << ": albedo " << own.mean[i] << " ± "
+                    << own.standard_error[i]);
         REQUIRE(std::isfinite(own.mean[i]));
         CHECK(own.mean[i] <= 1 + 4 * own.standard_error[i] + 1e-6f);
         if (c.lossless) CHECK(own.mean[i] == Approx(1).margin(4 * own.standard_error[i] + 1e-5));
@@ -143,8 +159,8 @@ TEST_CASE("every BSDF conserves energy: albedo <= 1 by its own and by uniform sa
       if (has_delta || c.sharp) continue;  // uniform directions (almost) never meet such lobes
       const Estimate uni = albedo_uniform_sampling(c, b, wo, 40000, rng);
       for (int i = 0; i < N; ++i) {
-        INFO(c.name << ", cos θo " << cos_o << ", lane " << i << ": own " << own.mean[i] << " ± " << own.standard_error[i]
-                    << ", uniform " << uni.mean[i] << " ± " << uni.standard_error[i]);
+        INFO(c.name << ", cos θo " << cos_o << ", lane " << i << ": own " << own.mean[i] << " ± "
+                    << own.standard_error[i] << ", uniform " << uni.mean[i] << " ± " << uni.standard_error[i]);
         const float se = std::sqrt(sqr(own.standard_error[i]) + sqr(uni.standard_error[i]));
         CHECK(uni.mean[i] <= 1 + 4 * uni.standard_error[i] + 1e-6f);
         CHECK(own.mean[i] == Approx(uni.mean[i]).margin(4 * se + 1e-6));
@@ -185,7 +201,8 @@ TEST_CASE("the glTF base is energy-consistent: a white plastic reflects everythi
     const Bsdf<N> b = bsdf_of(PbrMaterial::plastic(Rgb{1, 1, 1}, roughness));
     for (float cos_o : {1.f, 0.5f, 0.1f}) {
       const Estimate own = albedo_own_sampling(c, b, Vec3f(std::sqrt(1 - cos_o * cos_o), 0, cos_o), 100000, rng);
-      INFO("roughness " << roughness << ", cos θo " << cos_o << ": albedo " << own.mean[0] << " ± " << own.standard_error[0]);
+      INFO("roughness " << roughness << ", cos θo " << cos_o << ": albedo " << own.mean[0] << " ± "
+                        << own.standard_error[0]);
       CHECK(own.mean[0] == Approx(1).margin(4 * own.standard_error[0] + 5e-3));
     }
   }

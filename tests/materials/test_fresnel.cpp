@@ -34,7 +34,8 @@ TEST_CASE("copper (Johnson & Christy 1972) at 550 nm reflects as measured") {
   for (int i = 0; i < 5; ++i) {
     INFO("angle " << angles[i]);
     CHECK(fresnel_conductor(cos_deg(angles[i]), n, k) == Approx(expected[i]).margin(2e-3));
-    CHECK(conductor_approximation(cos_deg(angles[i]), n, k) == Approx(fresnel_conductor(cos_deg(angles[i]), n, k)).margin(1e-5));
+    CHECK(conductor_approximation(cos_deg(angles[i]), n, k) ==
+          Approx(fresnel_conductor(cos_deg(angles[i]), n, k)).margin(1e-5));
   }
 }
 
@@ -44,7 +45,8 @@ TEST_CASE("gold and silver normal-incidence reflectance at 450, 550, 650 nm") {
     const float lambdas[] = {450, 550, 650};
     for (int i = 0; i < 3; ++i) {
       INFO(key << " at " << lambdas[i] << " nm");
-      CHECK(fresnel_conductor(1, evaluate(m.n, lambdas[i]), evaluate(m.k, lambdas[i])) == Approx(expected[i]).margin(3e-3));
+      CHECK(fresnel_conductor(1, evaluate(m.n, lambdas[i]), evaluate(m.k, lambdas[i])) ==
+            Approx(expected[i]).margin(3e-3));
     }
   };
   check("Au", {0.408f, 0.792f, 0.957f});
@@ -94,7 +96,8 @@ TEST_CASE("Snell's law: refracted directions obey n1 sin θ1 = n2 sin θ2 and in
     const float eta = 1.f + 2.f * rng.uniform();
     const auto t = refract(w, {0, 0, 1}, eta);
     REQUIRE(t);
-    const float sin_i = std::sqrt(std::max(0.f, 1 - w.z * w.z)), sin_t = std::sqrt(std::max(0.f, 1 - t->wt.z * t->wt.z));
+    const float sin_i = std::sqrt(std::max(0.f, 1 - w.z * w.z)),
+                sin_t = std::sqrt(std::max(0.f, 1 - t->wt.z * t->wt.z));
     CHECK(sin_i == Approx(eta * sin_t).margin(1e-5));
     CHECK(t->wt.z < 0);
     const auto back = refract(t->wt, {0, 0, 1}, eta);  // reversibility: from inside back out along w

@@ -4,7 +4,6 @@
 // culled instance, a lost shadow) would change the image.
 
 #include <catch2/catch.hpp>
-
 #include <cstring>
 
 #include "render/renderer.h"
@@ -41,8 +40,8 @@ Scene shared_mesh_scene() {
   scene.instances = {
       {0, Transform::translate({-2, 1, 0})},
       {0, Transform::translate({0.5, 0.8, -1}) * Transform::scale({0.8, 0.8, 0.8})},
-      {0, Transform::translate({2, 1.2, 0.5}) * Transform::rotate(0.2, 0.4, 0.1, 0.9) *
-              Transform::scale({1, 1.5, 0.7})},
+      {0,
+       Transform::translate({2, 1.2, 0.5}) * Transform::rotate(0.2, 0.4, 0.1, 0.9) * Transform::scale({1, 1.5, 0.7})},
   };
   test::add_mesh(scene, test::make_quad({-6, 0, -6}, {0, 0, 12}, {12, 0, 0}, 0));
   test::add_mesh(scene, test::make_quad({-1, 4, -1}, {2, 0, 0}, {0, 0, 2}, 1));

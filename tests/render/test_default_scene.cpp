@@ -1,12 +1,12 @@
 // The default scene through the real CLI: an EXR with the right metadata, a preview, no invalid
 // samples.
 
-#include <catch2/catch.hpp>
-
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
+
+#include <catch2/catch.hpp>
 
 #include "base/log.h"
 #include "render/image_output.h"

@@ -6,7 +6,6 @@
 #include <stb_image_write.h>
 
 #include <catch2/catch.hpp>
-
 #include <fstream>
 #include <functional>
 
@@ -33,8 +32,12 @@ EnvironmentMapDesc make_map(int width, int height, const std::function<Rgb(int x
 
 // 0 except a block of texels [x0, x1) × [y0, y1) of grey radiance L.
 EnvironmentMapDesc block_map(int x0, int y0, int x1, int y1, float L, float rotation = 0) {
-  return make_map(64, 32, [=](int x, int y) { return x >= x0 && x < x1 && y >= y0 && y < y1 ? Rgb{L, L, L} : Rgb{}; },
-                  rotation);
+  return make_map(
+      64, 32,
+      [=](int x, int y) {
+        return x >= x0 && x < x1 && y >= y0 && y < y1 ? Rgb{L, L, L} : Rgb{};
+      },
+      rotation);
 }
 
 void check_near(const Vec3f& a, const Vec3f& b) {
@@ -67,8 +70,8 @@ TEST_CASE("environment map: lat-long mapping with +Y up, the centre along +X, ro
   check_near(map.direction({0.25f, 0.5f}), {0, 0, -1});  // where a glTF camera looks
   check_near(map.direction({0.75f, 0.5f}), {0, 0, 1});
   check_near(map.direction({0.f, 0.5f}), {-1, 0, 0});
-  check_near(map.direction({0.3f, 0.f}), {0, 1, 0});     // top row
-  check_near(map.direction({0.3f, 1.f}), {0, -1, 0});    // bottom row
+  check_near(map.direction({0.3f, 0.f}), {0, 1, 0});   // top row
+  check_near(map.direction({0.3f, 1.f}), {0, -1, 0});  // bottom row
   // Turned 90° about +Y (right-handed): the centre now looks along −Z.
   EnvironmentMapDesc white_turned = white;
   white_turned.rotation = radians(90.f);
@@ -95,8 +98,12 @@ TEST_CASE("environment map: the sampling pdf integrates to 1 and reports what sa
   Rng rng(4, 0);
   std::vector<float> values(32 * 16);
   for (float& v : values) v = rng.uniform() < 0.2f ? 0.f : rng.uniform() * rng.uniform() * 20;
-  const EnvironmentMapDesc desc =
-      make_map(32, 16, [&](int x, int y) { return Rgb{values[y * 32 + x], 1, 0.5f}; }, radians(40.f), 3.f);
+  const EnvironmentMapDesc desc = make_map(
+      32, 16,
+      [&](int x, int y) {
+        return Rgb{values[y * 32 + x], 1, 0.5f};
+      },
+      radians(40.f), 3.f);
   const EnvironmentMap map(desc);
   // ∫ pdf dω = ∫∫ pdf sin θ dθ dφ (bounded even at the poles), midpoint rule.
   constexpr int kTheta = 400, kPhi = 800;
@@ -104,7 +111,8 @@ TEST_CASE("environment map: the sampling pdf integrates to 1 and reports what sa
   for (int i = 0; i < kTheta; ++i)
     for (int j = 0; j < kPhi; ++j) {
       const double theta = kPi * (i + 0.5) / kTheta, phi = 2 * kPi * (j + 0.5) / kPhi;
-      const Vec3f w(float(std::sin(theta) * std::cos(phi)), float(std::cos(theta)), float(std::sin(theta) * std::sin(phi)));
+      const Vec3f w(float(std::sin(theta) * std::cos(phi)), float(std::cos(theta)),
+                    float(std::sin(theta) * std::sin(phi)));
       integral += map.pdf(w) * std::sin(theta) * (kPi / kTheta) * (2 * kPi / kPhi);
     }
   CHECK(integral == Approx(1).epsilon(1e-3));
@@ -120,12 +128,15 @@ TEST_CASE("environment map: the sampling pdf integrates to 1 and reports what sa
 TEST_CASE("environment map: sampled directions follow the pdf (chi-square)") {
   // A smooth sky with a bright lobe, dark at the poles (where a lat-long pdf has its 1/sin θ
   // cusp, which the test's cell integration in cos θ cannot resolve).
-  const EnvironmentMapDesc sky = make_map(128, 64, [](int x, int y) {
-    const float theta = kPi * (y + 0.5f) / 64, phi = 2 * kPi * (x + 0.5f) / 128;
-    const float L = sqr(std::sin(theta)) * (2 + std::cos(phi) + 0.5f * std::sin(2 * phi) * std::cos(theta)) +
-                    20 * std::exp(-20 * (sqr(theta - 1.f) + sqr(phi - 4.f)));
-    return Rgb{L, 0.8f * L, 0.5f * L};
-  }, radians(25.f));
+  const EnvironmentMapDesc sky = make_map(
+      128, 64,
+      [](int x, int y) {
+        const float theta = kPi * (y + 0.5f) / 64, phi = 2 * kPi * (x + 0.5f) / 128;
+        const float L = sqr(std::sin(theta)) * (2 + std::cos(phi) + 0.5f * std::sin(2 * phi) * std::cos(theta)) +
+                        20 * std::exp(-20 * (sqr(theta - 1.f) + sqr(phi - 4.f)));
+        return Rgb{L, 0.8f * L, 0.5f * L};
+      },
+      radians(25.f));
   const EnvironmentMap map(sky);
   // The map's +Y axis onto the χ² grid's z axis, by a cyclic (proper) permutation of the axes.
   const auto to_grid = [](const Vec3f& w) { return Vec3f(w.z, w.x, w.y); };
@@ -144,7 +155,12 @@ TEST_CASE("furnace: a white sphere under a constant environment map renders 1, a
   Scene scene;
   scene.materials.push_back(test::diffuse({1, 1, 1}));
   test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 3, 0));
-  scene.environment_map = make_map(64, 32, [](int, int) { return Rgb{0.5f, 0.5f, 0.5f}; }, radians(10.f), 2.f);
+  scene.environment_map = make_map(
+      64, 32,
+      [](int, int) {
+        return Rgb{0.5f, 0.5f, 0.5f};
+      },
+      radians(10.f), 2.f);
   // The sphere fills the view but for the corners. Whitted samples only the light (no MIS with
   // the BSDF) and needs the many samples.
   const auto camera = test::look_at({0, 0, 5.f}, {0, 0, 0}, 20.f);
@@ -234,11 +250,14 @@ TEST_CASE("environment maps load from .exr and .hdr alike, and bad files fail na
                     Catch::Contains("junk.hdr") && Catch::Contains("Radiance HDR"));
   CHECK_THROWS_WITH(load_environment_map(bad("junk.exr", "not an image"), 0, 1),
                     Catch::Contains("junk.exr") && Catch::Contains("OpenEXR"));
-  CHECK_THROWS_WITH(load_environment_map(bad("sky.png", "x"), 0, 1), Catch::Contains("sky.png") && Catch::Contains(".exr or .hdr"));
+  CHECK_THROWS_WITH(load_environment_map(bad("sky.png", "x"), 0, 1),
+                    Catch::Contains("sky.png") && Catch::Contains(".exr or .hdr"));
   std::vector<float> nan = rgb;
   nan[7] = std::nanf("");
-  write_exr(dir / "nan.exr", {w, h, nan, ColorPipeline::standard().chromaticities(ColorPipeline::kDefaultOutput), {}}, false);
-  CHECK_THROWS_WITH(load_environment_map(dir / "nan.exr", 0, 1), Catch::Contains("nan.exr") && Catch::Contains("not finite"));
+  write_exr(dir / "nan.exr", {w, h, nan, ColorPipeline::standard().chromaticities(ColorPipeline::kDefaultOutput), {}},
+            false);
+  CHECK_THROWS_WITH(load_environment_map(dir / "nan.exr", 0, 1),
+                    Catch::Contains("nan.exr") && Catch::Contains("not finite"));
   CHECK_THROWS_WITH(load_environment_map(exr, 0, -1), Catch::Contains("scale"));
 }
 
@@ -247,10 +266,15 @@ TEST_CASE("images with spot, directional and image-environment lights are identi
   scene.materials.push_back(test::diffuse({0.7f, 0.4f, 0.2f}));
   test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 2, 0));
   test::add_mesh(scene, test::make_quad({-3, -1, 3}, {6, 0, 0}, {0, 0, -6}, 0));
-  scene.spot_lights.push_back({"spot", {1, 3, 1}, normalize(Vec3f(-1, -3, -1)), 0.2f, 0.5f,
-                               RgbIlluminantSpectrum(Rgb{30, 30, 30})});
+  scene.spot_lights.push_back(
+      {"spot", {1, 3, 1}, normalize(Vec3f(-1, -3, -1)), 0.2f, 0.5f, RgbIlluminantSpectrum(Rgb{30, 30, 30})});
   scene.directional_lights.push_back({"sun", normalize(Vec3f(1, -1, -1)), RgbIlluminantSpectrum(Rgb{2, 2, 1.5f})});
-  scene.environment_map = make_map(16, 8, [](int x, int y) { return Rgb{0.1f * x, 0.05f * y, 0.3f}; }, 1.f);
+  scene.environment_map = make_map(
+      16, 8,
+      [](int x, int y) {
+        return Rgb{0.1f * x, 0.05f * y, 0.3f};
+      },
+      1.f);
   const auto camera = test::look_at({0, 1, 4}, {0, 0, 0}, 40.f);
   for (const IntegratorKind integrator : kIntegrators) {
     const auto one = test::render_rgb(scene, camera, 40, 30, 4, 16, 7, 1, integrator);

@@ -62,9 +62,11 @@ TEST_CASE("Beer-Lambert: a slab transmits exp(-sigma_a d) straight on") {
       SampledWavelengths<1> lambda = SampledWavelengths<1>::sample((lambda_nm - kLambdaMin) / (kLambdaMax - kLambdaMin),
                                                                    WavelengthSampling::uniform);
       RayCounters counters;
-      const auto L = path_radiance<1, true, true>(world, Ray{{0, 0, 3}, {0, 0, -1}, kInfinity}, lambda, sampler, options, counters);
+      const auto L = path_radiance<1, true, true>(world, Ray{{0, 0, 3}, {0, 0, -1}, kInfinity}, lambda, sampler,
+                                                  options, counters);
       const Spectrum& sigma_a = *scene.materials[0].dielectric()->absorption;
-      const double expected = std::exp(-double(evaluate(sigma_a, lambda[0])) * 0.5) * evaluate(*scene.environment, lambda[0]);
+      const double expected =
+          std::exp(-double(evaluate(sigma_a, lambda[0])) * 0.5) * evaluate(*scene.environment, lambda[0]);
       INFO("sigma " << sigma << " lambda " << lambda[0]);
       CHECK(evaluate(sigma_a, lambda[0]) == Approx(sigma).epsilon(1e-4));
       CHECK(L[0] == Approx(expected).epsilon(1e-3).margin(1e-30));
@@ -94,7 +96,8 @@ TEST_CASE("the Whitted and path integrators agree on smooth Fresnel surfaces lit
   // albedo 0.2, as it scales with the albedo), inside the 1% tolerance below.
   Scene scene;
   scene.materials.push_back(test::diffuse({0.1f, 0.1f, 0.1f}, "floor"));
-  scene.materials.push_back(Material{.name = "gold", .kind = PbrMaterial::metal_of(MaterialCatalogue::standard().metal("Au"))});
+  scene.materials.push_back(
+      Material{.name = "gold", .kind = PbrMaterial::metal_of(MaterialCatalogue::standard().metal("Au"))});
   scene.materials.push_back(glass(ConstantIor{1.5f}));
   test::add_mesh(scene, test::make_quad({-4, 0, 4}, {8, 0, 0}, {0, 0, -8}, 0));
   test::add_mesh(scene, test::make_icosphere({-0.6f, 0.5f, 0}, 0.5f, 3, 1));

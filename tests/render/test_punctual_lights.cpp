@@ -3,7 +3,6 @@
 // E = E⊥ cos θ. Direct light only (max depth 1), through both integrators.
 
 #include <catch2/catch.hpp>
-
 #include <functional>
 
 #include "support/test_scenes.h"
@@ -107,10 +106,10 @@ TEST_CASE("spot light: irradiance follows glTF's cone attenuation inside, across
   const auto E = [&](const Vec3f& p) { return I * attenuation(p) * inverse_square_cosine(position, p); };
   for (const IntegratorKind integrator : kIntegrators) {
     INFO((integrator == IntegratorKind::path ? "path" : "whitted"));
-    check_irradiance(scene, integrator, {0.4f, -0.2f, 0.4f}, E);  // inside the inner cone: at most 13° off the axis
-    check_irradiance(scene, integrator, {1.5f, -0.2f, 0.4f}, E);  // in the falloff: 26°–33°
-    check_irradiance(scene, integrator, {-0.1f, -0.1f, 0.2f}, E); // in the falloff on the other side: 24°–37°
-    check_dark(scene, integrator, {3.f, -0.2f, 0.4f});            // beyond the outer cone: over 41°
+    check_irradiance(scene, integrator, {0.4f, -0.2f, 0.4f}, E);   // inside the inner cone: at most 13° off the axis
+    check_irradiance(scene, integrator, {1.5f, -0.2f, 0.4f}, E);   // in the falloff: 26°–33°
+    check_irradiance(scene, integrator, {-0.1f, -0.1f, 0.2f}, E);  // in the falloff on the other side: 24°–37°
+    check_dark(scene, integrator, {3.f, -0.2f, 0.4f});             // beyond the outer cone: over 41°
     check_dark(scene, integrator, {-0.7f, -0.2f, 0.4f});
   }
 }

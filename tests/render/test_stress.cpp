@@ -75,8 +75,9 @@ TEST_CASE("absorption sigma_a d = 1e4 transmits nothing, 1e-8 everything, never 
 
 TEST_CASE("a conductor with k = 1000 is a perfect mirror") {
   Scene scene;
-  scene.materials.push_back(Material{.name = "mirror", .kind = PbrMaterial::metal_of(MeasuredMetal{ConstantSpectrum{1.f},
-                                                                                    ConstantSpectrum{1000.f}, "k1000"})});
+  scene.materials.push_back(
+      Material{.name = "mirror",
+               .kind = PbrMaterial::metal_of(MeasuredMetal{ConstantSpectrum{1.f}, ConstantSpectrum{1000.f}, "k1000"})});
   test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 3, 0));
   scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
   const auto img = test::render_rgb(scene, test::look_at({0, 0, 5.f}, {0, 0, 0}, 12.f), 16, 16, 1024, 64);

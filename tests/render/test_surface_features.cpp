@@ -49,7 +49,7 @@ TEST_CASE("alpha MASK cuts surfaces away where the texture's alpha is below the 
   const auto img = test::render_rgb(quad_before_sky(m), kCamera, 16, 16, 16);
   CHECK(img.stats.invalid_samples == 0);
   for (int c = 0; c < 3; ++c) {
-    CHECK(img.mean(c, 0, 0, 7, 16) == Approx(1).margin(0.02));  // cut away: the sky shows
+    CHECK(img.mean(c, 0, 0, 7, 16) == Approx(1).margin(0.02));   // cut away: the sky shows
     CHECK(img.mean(c, 9, 0, 16, 16) == Approx(0).margin(1e-6));  // kept: black
   }
   // Opaque mode ignores alpha.

@@ -2,7 +2,6 @@
 // clear message (and, through the CLI, a non-zero exit and no output file).
 
 #include <catch2/catch.hpp>
-
 #include <cstring>
 #include <fstream>
 
@@ -34,9 +33,9 @@ std::string base64(const std::vector<unsigned char>& bytes) {
 // One triangle (u16 indices), one emissive material, a camera and a point light, nested nodes.
 struct TriangleGltf {
   std::vector<uint16_t> indices = {0, 1, 2};
-  std::string buffer_uri;   // empty: embedded data URI
-  std::string extra_json;   // spliced into the top-level object
-  std::string node_extra;   // spliced into the mesh node
+  std::string buffer_uri;  // empty: embedded data URI
+  std::string extra_json;  // spliced into the top-level object
+  std::string node_extra;  // spliced into the mesh node
 
   std::string json() const {
     std::vector<unsigned char> bytes(36 + 8, 0);
@@ -52,7 +51,8 @@ struct TriangleGltf {
   "scenes": [{"nodes": [0]}],
   "nodes": [
     {"name": "root", "translation": [0, 0, 1], "children": [1, 2, 3]},
-    {"name": "tri", "mesh": 0, "scale": [2, 2, 2])" + node_extra + R"(},
+    {"name": "tri", "mesh": 0, "scale": [2, 2, 2])" +
+           node_extra + R"(},
     {"name": "cam", "camera": 0, "translation": [0, 0, 5]},
     {"name": "lamp", "translation": [0, 2, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}}
   ],
@@ -61,12 +61,14 @@ struct TriangleGltf {
   "materials": [{"name": "glow", "emissiveFactor": [1, 1, 1],
                  "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 5}},
                  "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1]}}],
-  "buffers": [{"byteLength": 44, "uri": ")" + uri + R"("}],
+  "buffers": [{"byteLength": 44, "uri": ")" +
+           uri + R"("}],
   "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
   "accessors": [
     {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
     {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}
-  ])" + extra_json + "\n}\n";
+  ])" + extra_json +
+           "\n}\n";
   }
 };
 
@@ -254,7 +256,8 @@ TEST_CASE("glTF materials map to Prism's optics: transmission, ior, dispersion, 
   // Errors name the problem.
   CHECK_THROWS_WITH(with_material(R"({"extras": {"prism": {"metal": "Mithril"}}})"), Catch::Contains("Mithril"));
   CHECK_THROWS_WITH(with_material(R"({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
-      "KHR_materials_ior": {"ior": 0.5}}})"), Catch::Contains("ior"));
+      "KHR_materials_ior": {"ior": 0.5}}})"),
+                    Catch::Contains("ior"));
 }
 
 TEST_CASE("KHR_lights_punctual spot and directional lights load with their cones and node orientation") {
@@ -266,7 +269,8 @@ TEST_CASE("KHR_lights_punctual spot and directional lights load with their cones
   "asset": {"version": "2.0"},
   "extensionsUsed": ["KHR_lights_punctual"],
   "extensions": {"KHR_lights_punctual": {"lights": [
-    {"type": "spot", "intensity": 5, "spot": )" + cone + R"(},
+    {"type": "spot", "intensity": 5, "spot": )" +
+           cone + R"(},
     {"type": "directional", "intensity": 3, "color": [1, 0.5, 0.25]},
     {"type": "spot", "intensity": 2, "range": 10, "spot": {}},
     {"type": "point", "range": 3}

@@ -20,7 +20,8 @@ Rgb xyz_to_rec709(const Xyz& xyz) {
 Rgb reflectance_rgb(const Spectrum& reflectance) {
   const auto& d65 = cie().d65;
   std::vector<float> lit;
-  for (int l = int(kLambdaMin); l <= int(kLambdaMax); ++l) lit.push_back(evaluate(reflectance, float(l)) * d65(float(l)));
+  for (int l = int(kLambdaMin); l <= int(kLambdaMax); ++l)
+    lit.push_back(evaluate(reflectance, float(l)) * d65(float(l)));
   return xyz_to_rec709(spectrum_to_xyz(DenselySampledSpectrum(int(kLambdaMin), lit)));
 }
 }  // namespace

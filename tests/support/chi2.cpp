@@ -52,8 +52,8 @@ Chi2Result chi2_test(const std::function<std::optional<Vec3f>(float, float, floa
   // Cell coordinates: t = (θ'/π)^(1/3) ∈ [0, 1], φ' ∈ [0, 2π).
   const auto direction_at = [&](double t, double phi) {
     const double theta = kPi * t * t * t;
-    return frame.to_world(Vec3f(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)),
-                                float(std::cos(theta))));
+    return frame.to_world(
+        Vec3f(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)), float(std::cos(theta))));
   };
   const auto cell_of = [&](const Vec3f& w) {
     const Vec3f l = frame.to_local(w);

@@ -50,9 +50,8 @@ struct MeanDifference {
 MeanDifference mean_difference(const TestRender& a, const TestRender& b, int channel);
 
 TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, int height, RenderOptions options);
-TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, int height, int spp,
-                      int max_depth = 64, uint64_t seed = 1, int threads = 0,
-                      IntegratorKind integrator = IntegratorKind::path);
+TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, int height, int spp, int max_depth = 64,
+                      uint64_t seed = 1, int threads = 0, IntegratorKind integrator = IntegratorKind::path);
 
 // A fresh empty folder for a test's files.
 std::filesystem::path temp_dir(const std::string& name);
