@@ -50,7 +50,7 @@ class ConductorBsdf {
     const Vec3f m = wo + wi;
     if (length_squared(m) == 0) return 0.f;
     const Vec3f wm = normalize(m);
-    return distribution_.D_visible(wo, wm) / (4 * std::abs(dot(wo, wm)));
+    return distribution_.D_visible(wo, wm) / (4 * abs_dot(wo, wm));
   }
 
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float, Vec2f u) const {

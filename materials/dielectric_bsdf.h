@@ -91,9 +91,9 @@ class DielectricBsdf {
     const float R = fresnel(dot(wo, h->wm)), T = transmission_ * (1 - R);
     if (R + T <= 0) return 0.f;
     const float Dv = distribution_.D_visible(wo, h->wm);
-    if (h->reflection) return Dv / (4 * std::abs(dot(wo, h->wm))) * R / (R + T);
-    if (thin_) return Dv / (4 * std::abs(dot(wo, h->wm))) * T / (R + T);
-    const float dwm_dwi = std::abs(dot(wi, h->wm)) / sqr(dot(wi, h->wm) + dot(wo, h->wm) / h->eta_p);
+    if (h->reflection) return Dv / (4 * abs_dot(wo, h->wm)) * R / (R + T);
+    if (thin_) return Dv / (4 * abs_dot(wo, h->wm)) * T / (R + T);
+    const float dwm_dwi = abs_dot(wi, h->wm) / sqr(dot(wi, h->wm) + dot(wo, h->wm) / h->eta_p);
     return Dv * dwm_dwi * T / (R + T);
   }
 

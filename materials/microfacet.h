@@ -47,7 +47,7 @@ class TrowbridgeReitz {
   // the surface, the normals visible from −w).
   float D_visible(const Vec3f& w, const Vec3f& m) const {
     const float cos_w = std::abs(w.z);
-    return cos_w > 0 ? G1(w) * std::abs(dot(w, m)) * D(m) / cos_w : 0.f;
+    return cos_w > 0 ? G1(w) * abs_dot(w, m) * D(m) / cos_w : 0.f;
   }
 
   // A visible normal from w (taken in the upper hemisphere), distributed as D_visible(w, ·).

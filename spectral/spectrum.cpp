@@ -50,10 +50,4 @@ RgbIlluminantSpectrum::RgbIlluminantSpectrum(Rgb rgb) : shape(rgb), illuminant(&
 
 float RgbIlluminantSpectrum::operator()(float lambda) const { return shape(lambda) * (*illuminant)(lambda); }
 
-float max_value(const Spectrum& s) {
-  float m = 0;
-  for (float l = kLambdaMin; l <= kLambdaMax; l += 1.f) m = std::max(m, evaluate(s, l));
-  return m;
-}
-
 }  // namespace prism

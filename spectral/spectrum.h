@@ -109,7 +109,4 @@ SampledSpectrum<N> sample(const Spectrum& s, const SampledWavelengths<N>& lambda
       s);
 }
 
-// Largest value over [kLambdaMin, kLambdaMax] at 1 nm steps.
-float max_value(const Spectrum& s);
-
 }  // namespace prism

@@ -14,17 +14,6 @@ struct Bounds3f {
   void extend(const Bounds3f& b) { lo = min(lo, b.lo), hi = max(hi, b.hi); }
   Vec3f diagonal() const { return hi - lo; }
   Vec3f centroid() const { return (lo + hi) * 0.5f; }
-  float surface_area() const {
-    if (empty()) return 0.f;
-    const Vec3f d = diagonal();
-    return 2.f * (d.x * d.y + d.y * d.z + d.z * d.x);
-  }
-  int max_extent() const { return max_dimension(diagonal()); }
 };
-
-inline Bounds3f merge(Bounds3f a, const Bounds3f& b) {
-  a.extend(b);
-  return a;
-}
 
 }  // namespace prism

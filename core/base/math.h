@@ -33,7 +33,6 @@ constexpr T clamp(T x, U lo, V hi) {
 
 inline float safe_sqrt(float x) { return std::sqrt(std::max(0.f, x)); }
 inline double safe_sqrt(double x) { return std::sqrt(std::max(0., x)); }
-inline float safe_asin(float x) { return std::asin(clamp(x, -1.f, 1.f)); }
 inline float safe_acos(float x) { return std::acos(clamp(x, -1.f, 1.f)); }
 
 inline float radians(float degrees) { return degrees * (kPi / 180.f); }

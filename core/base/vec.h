@@ -120,16 +120,8 @@ Vec3<T> abs(const Vec3<T>& v) {
   return {std::abs(v.x), std::abs(v.y), std::abs(v.z)};
 }
 template <typename T>
-constexpr T max_component(const Vec3<T>& v) {
-  return std::max(v.x, std::max(v.y, v.z));
-}
-template <typename T>
 constexpr int max_dimension(const Vec3<T>& v) {
   return v.x > v.y ? (v.x > v.z ? 0 : 2) : (v.y > v.z ? 1 : 2);
-}
-template <typename T>
-constexpr Vec3<T> permute(const Vec3<T>& v, int i, int j, int k) {
-  return {v[i], v[j], v[k]};
 }
 
 // n flipped, if needed, to lie in the hemisphere of v.

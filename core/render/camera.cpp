@@ -51,8 +51,7 @@ CameraDesc framing_camera(const Bounds3f& bounds, float aspect) {
     const Vec3d corner((i & 1 ? bounds.hi : bounds.lo).x, (i & 2 ? bounds.hi : bounds.lo).y,
                        (i & 4 ? bounds.hi : bounds.lo).z);
     const Vec3d q = corner - center;
-    distance = std::max(
-        {distance, dot(q, back) + std::abs(dot(q, right)) / tan_x, dot(q, back) + std::abs(dot(q, up)) / tan_y});
+    distance = std::max({distance, dot(q, back) + abs_dot(q, right) / tan_x, dot(q, back) + abs_dot(q, up) / tan_y});
   }
   if (!(distance > 0)) distance = 1;
   const Vec3d eye = center + back * (distance * 1.02);

@@ -51,7 +51,7 @@ struct AreaLight {
 
   // pdf of sampling direction towards point `p_light` at distance d: d² / (|cos θ_light| · A).
   float pdf_solid_angle(float distance, const Vec3f& w_to_light) const {
-    const float cos_l = std::abs(dot(n, w_to_light));
+    const float cos_l = abs_dot(n, w_to_light);
     return cos_l > 0 ? distance * distance / (cos_l * area) : 0.f;
   }
 
