@@ -101,6 +101,8 @@ inline BlockHits intersect_triangles(const WatertightRay& r, const TriangleBlock
   hits.inv_det = 1.f / det;
   hits.t = t_scaled * hits.inv_det;
   hits.u = u, hits.v = v, hits.w = w;
+  const i8 candidates = ~outside & (det != 0.f) & (hits.t > 0.f) & (hits.t <= tmax);
+  if (!simd::bits(candidates)) return hits;  // most blocks a ray reaches: no need for the bound
 
   // t must exceed its own rounding-error bound δt, or a ray leaving a surface point could hit
   // that surface again at a tiny t: a point exactly on an axis-aligned plane has no error to be
@@ -115,7 +117,7 @@ inline BlockHits intersect_triangles(const WatertightRay& r, const TriangleBlock
   const f8 delta_e = 2 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
   const f8 max_e = largest(u, v, w);
   const f8 delta_t = 3 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * magnitude(hits.inv_det);
-  hits.mask = simd::bits(~outside & (det != 0.f) & (hits.t > delta_t) & (hits.t <= tmax));
+  hits.mask = simd::bits(candidates & (hits.t > delta_t));
   return hits;
 }
 
