@@ -63,16 +63,18 @@ for scene in "${scenes[@]}"; do
       p_mrays="" e_mrays="" p_build="" e_build="" bytes=""
       for ((r = 0; r < rounds; ++r)); do
         p=$(nice -n 10 "$prism" bench rays "$scene" "$rays" --threads "$t" --repeat "$repeat" "${mode[@]}" \
-              --hits "$out/$name.$kind.prism.hits" 2>/dev/null | tail -1)
+              --hits "$out/$name.$kind.prism.hits" 2>/dev/null | tail -1) ||
+          { echo "bench_rays: prism bench rays failed on $rays" >&2; exit 1; }
         e=$(nice -n 10 "$raybench" embree "$scene" "$rays" --threads "$t" --repeat "$repeat" "${mode[@]}" \
-              --hits "$out/$name.$kind.embree.hits" 2>/dev/null | tail -1)
+              --hits "$out/$name.$kind.embree.hits" 2>/dev/null | tail -1) ||
+          { echo "bench_rays: raybench embree failed on $rays" >&2; exit 1; }
         p_mrays=$(best "$p_mrays" "$(field mrays_best "$p")" 1)
         e_mrays=$(best "$e_mrays" "$(field mrays_best "$e")" 1)
         p_build=$(best "$p_build" "$(field build_ms "$p")" 0)
         e_build=$(best "$e_build" "$(field build_ms "$e")" 0)
         bytes=$(field bytes_per_tri "$p")
       done
-      check=$("$raybench" check "$rays" "$out/$name.$kind.embree.hits" "$out/$name.$kind.prism.hits" | tail -1)
+      check=$("$raybench" check "$rays" "$out/$name.$kind.embree.hits" "$out/$name.$kind.prism.hits" | tail -1) || true  # a FAIL is a row, not the end
       echo "| $name | $kind | $t | $p_mrays | $e_mrays | $(ratio "$p_mrays" "$e_mrays") | $p_build | $e_build |" \
            "$(ratio "$p_build" "$e_build") | $bytes | $(field result "$check") (bad $(field bad_frac "$check")) |"
     done
