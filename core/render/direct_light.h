@@ -18,10 +18,12 @@ struct LightContribution {
   float bsdf_pdf;          // the BSDF's pdf of sampling the same direction
 };
 
-// Reflection that would cross to the other side of the geometric surface is refused: with
-// shading normals it would leak light through the surface (Veach 1997, §5.3).
-inline bool crosses_surface(const SurfaceInteraction& si, const Vec3f& wi) {
-  return dot(wi, si.n) * dot(si.wo, si.n) <= 0;
+// A direction must be on the side of the geometric surface that the lobe scattering into it
+// says: wo's side for reflection, the other side for transmission. Shading normals can disagree,
+// and would then leak light through the surface (Veach 1997, §5.3).
+inline bool wrong_side(const SurfaceInteraction& si, const Vec3f& wi, bool transmission) {
+  const bool crosses = dot(wi, si.n) * dot(si.wo, si.n) <= 0;
+  return crosses != transmission;
 }
 
 template <int N>
@@ -30,8 +32,9 @@ std::optional<LightContribution<N>> light_contribution(const World& world, const
                                                        const Light& light, Vec2f u, const SampledWavelengths<N>& lambda,
                                                        RayCounters& counters) {
   const auto sample = sample_li(light, LightSampleContext{si.p, si.p_error, si.n}, u, lambda);
-  if (!sample || sample->L.is_zero() || crosses_surface(si, sample->wi)) return std::nullopt;
+  if (!sample || sample->L.is_zero()) return std::nullopt;
   const Vec3f wi = frame.to_local(sample->wi);
+  if (wrong_side(si, sample->wi, wi.z * wo.z < 0)) return std::nullopt;
   const SampledSpectrum<N> f = bsdf_f(bsdf, wo, wi) * abs_cos_theta(wi);
   if (f.is_zero()) return std::nullopt;
   ++counters.shadow;

@@ -80,7 +80,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     const auto bs = bsdf_sample_f(bsdf, wo, uc, sampler.get_2d());
     if (!bs || bs->pdf == 0.f) break;
     const Vec3f wi = frame.to_world(bs->wi);
-    if (!bs->transmission && crosses_surface(*si, wi)) break;
+    if (wrong_side(*si, wi, bs->transmission)) break;
     beta *= bs->f * (abs_cos_theta(bs->wi) / bs->pdf);
     specular_bounce = bs->specular;
     bsdf_pdf_prev = bs->pdf;

@@ -58,7 +58,7 @@ SampledSpectrum<N> scatter(const Context& c, const SurfaceInteraction& si, const
   if (!bsdf_is_specular(bsdf)) L += direct_light(c, si, frame, bsdf, wo, lambda);
   for (const DeltaLobe<N>& lobe : bsdf_delta_lobes(bsdf, wo)) {
     const Vec3f wi = frame.to_world(lobe.wi);
-    if (!lobe.transmission && crosses_surface(si, wi)) continue;
+    if (wrong_side(si, wi, lobe.transmission)) continue;
     MediumStack beyond = media;
     if (lobe.transmission) beyond.cross(material, entering);
     L += lobe.weight * trace(c, si.spawn(wi), lambda, beyond, depth + 1, weight * lobe.weight.max());

@@ -116,3 +116,32 @@ TEST_CASE("the Whitted and path integrators agree on smooth Fresnel surfaces lit
     CHECK(std::abs(d.difference) <= 0.01 * whitted.mean(c));
   }
 }
+
+TEST_CASE("light sampling and BSDF sampling agree on light seen through rough transmission") {
+  // A small lamp behind a rough glass pane (thin-walled and solid): light sampling must see it
+  // through the transmission lobe, or NEE+MIS loses what BSDF sampling alone finds.
+  for (const bool thin : {true, false}) {
+    Scene scene;
+    scene.materials.push_back(
+        Material{.name = "pane", .kind = PbrMaterial::glass(Dielectric(ConstantIor{1.5f}, {}, thin), 0.3f)});
+    Material lamp = test::diffuse({0, 0, 0}, "lamp");
+    lamp.emission = RgbIlluminantSpectrum(Rgb{50, 50, 50});
+    scene.materials.push_back(lamp);
+    test::add_mesh(scene, test::make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 0));
+    test::add_mesh(scene, test::make_quad({-0.1f, -0.1f, -0.5f}, {0.2f, 0, 0}, {0, 0.2f, 0}, 1));  // faces +z
+    const auto camera = test::look_at({0, 0, 3}, {0, 0, 0}, 20.f);
+    RenderOptions options;
+    options.spp = 256;
+    options.path.max_depth = 4;
+    const auto mis = test::render_rgb(scene, camera, 24, 24, options);
+    options.path.next_event = false;
+    const auto bsdf_only = test::render_rgb(scene, camera, 24, 24, options);
+    INFO((thin ? "thin-walled" : "solid"));
+    CHECK(mis.stats.invalid_samples == 0);
+    for (int c = 0; c < 3; ++c) {
+      const auto d = test::mean_difference(mis, bsdf_only, c);
+      CHECK(mis.mean(c) > 0.05);
+      CHECK(std::abs(d.difference) < 4 * d.standard_error + 1e-3 * mis.mean(c));
+    }
+  }
+}
