@@ -22,17 +22,25 @@ inline const double kTanhMin = std::tanh(kA * (kLambdaMin - kMu));
 inline const double kTanhMax = std::tanh(kA * (kLambdaMax - kMu));
 }  // namespace visible_pdf
 
+// p(λ) through t = tanh(a(λ − μ)): sech² = 1 − t², so sampling gets the pdf without a cosh.
+inline float visible_pdf_of_tanh(float t) {
+  using namespace visible_pdf;
+  return float(kA / (kTanhMax - kTanhMin)) * (1.f - t * t);
+}
+
 inline float visible_wavelengths_pdf(float lambda) {
   using namespace visible_pdf;
   if (lambda < kLambdaMin || lambda > kLambdaMax) return 0.f;
-  const double c = std::cosh(kA * (lambda - kMu));
-  return float(kA / ((kTanhMax - kTanhMin) * c * c));
+  return visible_pdf_of_tanh(std::tanh(float(kA) * (lambda - float(kMu))));
 }
 
-inline float sample_visible_wavelengths(float u) {
+// The inverse CDF at u, and p(λ) there.
+inline float sample_visible_wavelengths(float u, float& pdf) {
   using namespace visible_pdf;
-  const double t = kTanhMin + u * (kTanhMax - kTanhMin);
-  return std::clamp(float(kMu + std::atanh(t) / kA), kLambdaMin, kLambdaMax);
+  const float t = float(kTanhMin) + u * float(kTanhMax - kTanhMin);
+  pdf = visible_pdf_of_tanh(t);
+  const float atanh_t = 0.5f * std::log((1.f + t) / (1.f - t));  // atanh; glibc's atanhf is slow
+  return std::clamp(float(kMu) + atanh_t / float(kA), kLambdaMin, kLambdaMax);
 }
 
 enum class WavelengthSampling { visible, uniform };
@@ -46,8 +54,7 @@ class SampledWavelengths {
       float ui = u + float(i) / N;
       if (ui >= 1.f) ui -= 1.f;
       if (mode == WavelengthSampling::visible) {
-        w.lambda_[i] = sample_visible_wavelengths(ui);
-        w.pdf_[i] = visible_wavelengths_pdf(w.lambda_[i]);
+        w.lambda_[i] = sample_visible_wavelengths(ui, w.pdf_[i]);
       } else {
         w.lambda_[i] = kLambdaMin + ui * (kLambdaMax - kLambdaMin);
         w.pdf_[i] = 1.f / (kLambdaMax - kLambdaMin);

@@ -20,12 +20,21 @@ TEST_CASE("visible wavelength pdf integrates to 1 over 360-830 nm") {
   CHECK(visible_wavelengths_pdf(831.f) == 0.f);
 }
 
+namespace {
+float visible_wavelength(float u) {
+  float pdf;
+  return sample_visible_wavelengths(u, pdf);
+}
+}  // namespace
+
 TEST_CASE("visible wavelength sampling inverts the pdf's CDF") {
   // Numerically integrated CDF at the sampled wavelength must equal u.
   for (float u : {0.001f, 0.1f, 0.25f, 0.5f, 0.75f, 0.9f, 0.999f}) {
-    const float lambda = sample_visible_wavelengths(u);
+    float pdf = 0;
+    const float lambda = sample_visible_wavelengths(u, pdf);
     REQUIRE(lambda >= kLambdaMin);
     REQUIRE(lambda <= kLambdaMax);
+    CHECK(pdf == Approx(visible_wavelengths_pdf(lambda)).epsilon(1e-5));  // the pdf returned is p(λ)
     double cdf = 0;
     const int steps = 20000;
     const double h = (lambda - kLambdaMin) / steps;
@@ -72,10 +81,10 @@ TEST_CASE("terminating the secondary wavelengths keeps the estimator unbiased") 
 
 TEST_CASE("hero wavelengths are stratified: one per 1/N of the CDF") {
   const auto lambda = SampledWavelengths<4>::sample(0.1f);
-  CHECK(lambda[0] == Approx(sample_visible_wavelengths(0.1f)));
-  CHECK(lambda[1] == Approx(sample_visible_wavelengths(0.35f)));
-  CHECK(lambda[2] == Approx(sample_visible_wavelengths(0.6f)));
-  CHECK(lambda[3] == Approx(sample_visible_wavelengths(0.85f)));
+  CHECK(lambda[0] == Approx(visible_wavelength(0.1f)));
+  CHECK(lambda[1] == Approx(visible_wavelength(0.35f)));
+  CHECK(lambda[2] == Approx(visible_wavelength(0.6f)));
+  CHECK(lambda[3] == Approx(visible_wavelength(0.85f)));
 }
 
 TEST_CASE("visible wavelength sampling follows its pdf (chi-square)") {
@@ -83,7 +92,7 @@ TEST_CASE("visible wavelength sampling follows its pdf (chi-square)") {
   std::vector<double> observed(kBins, 0);
   Rng rng(13, 0);
   for (int i = 0; i < kSamples; ++i) {
-    const float l = sample_visible_wavelengths(rng.uniform());
+    const float l = visible_wavelength(rng.uniform());
     observed[std::min(kBins - 1, int((l - kLambdaMin) / (kLambdaMax - kLambdaMin) * kBins))] += 1;
   }
   double statistic = 0;
@@ -109,8 +118,8 @@ TEST_CASE("wavelengths at the ends of the range are valid everywhere") {
       REQUIRE(std::isfinite(lambda.pdf()[i]));
     }
   }
-  CHECK(sample_visible_wavelengths(0.f) == kLambdaMin);
-  CHECK(sample_visible_wavelengths(1.f) == kLambdaMax);
+  CHECK(visible_wavelength(0.f) == kLambdaMin);
+  CHECK(visible_wavelength(1.f) == kLambdaMax);
   for (const float l : {kLambdaMin, kLambdaMax}) {
     CHECK(std::isfinite(cie().x(l)));
     CHECK(cie().d65(l) > 0);
