@@ -50,4 +50,10 @@ RgbIlluminantSpectrum::RgbIlluminantSpectrum(Rgb rgb) : shape(rgb), illuminant(&
 
 float RgbIlluminantSpectrum::operator()(float lambda) const { return shape(lambda) * (*illuminant)(lambda); }
 
+DenselySampledSpectrum densely_sampled(const Spectrum& s) {
+  std::vector<float> values;
+  for (int lambda = int(kLambdaMin); lambda <= int(kLambdaMax); ++lambda) values.push_back(evaluate(s, float(lambda)));
+  return DenselySampledSpectrum(int(kLambdaMin), std::move(values));
+}
+
 }  // namespace prism

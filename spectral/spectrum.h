@@ -98,6 +98,9 @@ inline float evaluate(const Spectrum& s, float lambda) {
   return std::visit([lambda](const auto& kind) { return kind(lambda); }, s);
 }
 
+// s at each nm of the visible range, linear in between: for spectra evaluated very often.
+DenselySampledSpectrum densely_sampled(const Spectrum& s);
+
 template <int N>
 SampledSpectrum<N> sample(const Spectrum& s, const SampledWavelengths<N>& lambda) {
   return std::visit(

@@ -93,7 +93,9 @@ void World::add_lights() {
     fail("a scene has either a constant environment or an environment map, not both");
   if (scene_.environment) {
     environment_light_ = int(lights_.size());
-    lights_.push_back(EnvironmentLight{&*scene_.environment});
+    // Every path that escapes evaluates it: a 1-nm table instead of RGB upsampling times D65.
+    environment_radiance_ = std::make_unique<const Spectrum>(densely_sampled(*scene_.environment));
+    lights_.push_back(EnvironmentLight{environment_radiance_.get()});
     powers.push_back(4 * kPi * kPi * r * r * spectrum_to_xyz(*scene_.environment).y);  // π r² · 4π L
   }
   if (scene_.environment_map) {

@@ -70,6 +70,7 @@ class World {
   int environment_light_ = -1;
   bool has_alpha_ = false;
   std::unique_ptr<const EnvironmentMap> environment_map_;
+  std::unique_ptr<const Spectrum> environment_radiance_;  // the constant environment, tabulated per nm
   PowerLightSampler light_sampler_;
   std::vector<uint32_t> delta_lights_, area_lights_;
   PowerLightSampler area_light_sampler_;
