@@ -53,8 +53,9 @@ class DielectricBsdf {
 
   // Smooth interface: the reflected share, and the transmitted direction and share.
   float reflectance(const Vec3f& wo) const { return fresnel(cos_theta(wo)); }
-  std::optional<Transmission<N>> transmission(const Vec3f& wo) const {
-    const float T = 1 - reflectance(wo);
+  std::optional<Transmission<N>> transmission(const Vec3f& wo) const { return transmission(wo, reflectance(wo)); }
+  std::optional<Transmission<N>> transmission(const Vec3f& wo, float R) const {  // R = reflectance(wo)
+    const float T = 1 - R;
     if (T <= 0 || transmission_ <= 0) return std::nullopt;
     if (thin_) return Transmission<N>{-wo, tint_ * (transmission_ * T), 1.f};
     const auto refraction = refract(wo, {0, 0, 1}, eta_);
@@ -65,8 +66,9 @@ class DielectricBsdf {
   DeltaLobes<N> delta_lobes(const Vec3f& wo) const {
     DeltaLobes<N> d;
     if (!smooth_ || wo.z == 0) return d;
-    d.add({Vec3f(-wo.x, -wo.y, wo.z), SampledSpectrum<N>(reflectance(wo)), false, 1.f});
-    if (const auto t = transmission(wo)) d.add({t->wi, t->weight, true, t->eta});
+    const float R = reflectance(wo);
+    d.add({Vec3f(-wo.x, -wo.y, wo.z), SampledSpectrum<N>(R), false, 1.f});
+    if (const auto t = transmission(wo, R)) d.add({t->wi, t->weight, true, t->eta});
     return d;
   }
 
@@ -149,7 +151,7 @@ class DielectricBsdf {
 
   std::optional<BsdfSample<N>> sample_smooth(const Vec3f& wo, float uc) const {
     const float R = reflectance(wo);
-    const auto t = transmission(wo);
+    const auto t = transmission(wo, R);
     const float T = t ? transmission_ * (1 - R) : 0.f;
     if (R + T <= 0) return std::nullopt;
     if (uc < R / (R + T)) {

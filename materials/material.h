@@ -124,30 +124,32 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
   const PbrMaterial& material = std::get<PbrMaterial>(m.kind);
   const SurfaceInputs p = material.inputs(at);
   const float alpha = sqr(p.roughness);
-  const auto n_front = [&](int i) { return front ? ior(front->ior, lambda[i]) : 1.f; };
+  SampledSpectrum<N> n_front(1.f), color;  // the front medium's index; the base colour
   const RgbAlbedoSpectrum base(p.base_color);
+  for (int i = 0; i < N; ++i) {
+    if (front) n_front[i] = ior(front->ior, lambda[i]);
+    if (p.metallic < 1 || !material.metal) color[i] = base(lambda[i]);
+  }
 
   // The metal, relative to the surrounding medium.
   SampledSpectrum<N> n, k;
-  for (int i = 0; i < N && p.metallic > 0; ++i) {
+  if (p.metallic > 0) {
     if (material.metal) {
-      n[i] = evaluate(material.metal->n, lambda[i]);
-      k[i] = evaluate(material.metal->k, lambda[i]);
+      n = sample(material.metal->n, lambda), k = sample(material.metal->k, lambda);
     } else {
-      const auto nk = metal_nk_from_reflectance(base(lambda[i]));
-      n[i] = nk[0], k[i] = nk[1];
+      for (int i = 0; i < N; ++i) {
+        const auto nk = metal_nk_from_reflectance(color[i]);
+        n[i] = nk[0], k[i] = nk[1];
+      }
     }
-    n[i] /= n_front(i);
-    k[i] /= n_front(i);
+    n /= n_front, k /= n_front;
   }
   const ConductorBsdf<N> metal(alpha, n, k);
   if (p.metallic >= 1) return metal;
 
   if constexpr (Dispersion)
     if (disperses(m, front)) lambda.terminate_secondary();
-  const float eta = ior(material.dielectric.ior, lambda[0]) / n_front(0);
-  SampledSpectrum<N> color;
-  for (int i = 0; i < N; ++i) color[i] = base(lambda[i]);
+  const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
   const DielectricBsdf<N> dielectric(alpha, eta, color, p.thin_walled, p.transmission, material.specular);
   if (p.metallic <= 0 && p.transmission >= 1) return dielectric;
   if (p.metallic <= 0 && p.transmission <= 0 && material.specular <= 0)
