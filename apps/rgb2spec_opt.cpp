@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "base/clock.h"
 #include "base/error.h"
 #include "base/parallel.h"
 #include "spectral/sigmoid_fit.h"
@@ -56,10 +57,10 @@ int main(int argc, char** argv) {
     const ThreadLimit limit(threads);
     const auto start = std::chrono::steady_clock::now();
     const RgbToSpectrumTable table = fit_rgb_to_spectrum_table(resolution);
-    const std::chrono::duration<double> seconds = std::chrono::steady_clock::now() - start;
+    const double seconds = seconds_since(start);
     table.save(output);
     const NodeError worst = worst_round_trip(table);
-    fmt::print("resolution {}: fitted in {:.1f} s; wrote {}\n", resolution, seconds.count(), output);
+    fmt::print("resolution {}: fitted in {:.1f} s; wrote {}\n", resolution, seconds, output);
     fmt::print("worst round-trip error over the grid: {:.2e} per channel, at RGB ({:.4f}, {:.4f}, {:.4f})\n",
                worst.error, worst.rgb.r, worst.rgb.g, worst.rgb.b);
   } catch (const Error& e) {

@@ -12,6 +12,7 @@
 
 #include "apps/prism/commands.h"
 #include "apps/prism/ray_file.h"
+#include "base/clock.h"
 #include "base/log.h"
 #include "base/parallel.h"
 #include "render/world.h"
@@ -29,10 +30,6 @@ struct BenchArgs {
 };
 
 constexpr size_t kChunk = 4096;
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // One timed pass over all rays; returns its wall time in seconds.
 double trace_pass(const Accel& accel, const std::vector<Ray>& rays, bool occluded, int threads,

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <sstream>
 
+#include "base/clock.h"
 #include "base/error.h"
 #include "base/log.h"
 #include "render/environment_map.h"
@@ -45,10 +46,6 @@ CameraDesc choose_camera(const Scene& scene, const SceneArgs& args) {
   const float aspect = args.width > 0 && args.height > 0 ? float(args.width) / float(args.height) : 1.f;
   log::info("{}: no camera in the scene; using a camera that frames the whole scene", scene.source.string());
   return framing_camera(scene.world_bounds(), aspect);
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
 }  // namespace

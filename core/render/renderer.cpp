@@ -4,6 +4,7 @@
 #include <chrono>
 #include <mutex>
 
+#include "base/clock.h"
 #include "base/error.h"
 #include "base/parallel.h"
 #include "base/progress.h"
@@ -87,7 +88,7 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
     });
   }
   progress.finish();
-  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.seconds = seconds_since(start);
   return {camera.width(), camera.height(), film.xyz_image(options.spp), stats};
 }
 
