@@ -16,6 +16,9 @@ struct Rgb {
   constexpr bool operator==(const Rgb&) const = default;
 };
 
+// Luminance of linear Rec.709 RGB (ITU-R BT.709 weights).
+constexpr float luminance(Rgb c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
 // An image of linear RGB triples, interleaved, top row first.
 struct RgbImage {
   int width = 0, height = 0;

@@ -9,13 +9,6 @@
 
 namespace prism {
 
-namespace {
-
-// Luminance Y of linear Rec.709 (ITU-R BT.709 primaries, D65 white).
-float luminance(Rgb c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
-
-}  // namespace
-
 EnvironmentMapDesc load_environment_map(const std::filesystem::path& file, float rotation_degrees, float scale) {
   const std::string name = file.string();
   if (!std::isfinite(rotation_degrees)) fail("{}: the rotation must be a finite number of degrees", name);

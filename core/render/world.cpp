@@ -28,7 +28,6 @@ World::World(const Scene& scene, const AccelOptions& accel)
         d.normal_matrix[r][c] = float(inv_t.m[r][c]);
       }
     instances_.push_back(d);
-    has_alpha_ |= scene.materials[scene.meshes[inst.mesh].material].alpha_mode != AlphaMode::opaque;
   }
   add_lights();
 }
@@ -45,17 +44,21 @@ std::array<Vec3f, 3> World::world_vertices(const InstanceData& inst, uint32_t pr
 
 void World::add_lights() {
   std::vector<float> powers;
+  std::vector<std::optional<float>> material_luminance(scene_.materials.size());  // once per emitting material
   instance_light_base_.assign(instances_.size(), -1);
   for (uint32_t i = 0; i < instances_.size(); ++i) {
     const Mesh& mesh = *instances_[i].mesh;
     const Material& material = scene_.materials[mesh.material];
     if (!material.emission) continue;
-    // Power by luminance; a textured emission counts with its texture's mean.
-    float luminance = spectrum_to_xyz(*material.emission).y;
     const Texture* texture = material.emission_texture ? &*material.emission_texture : nullptr;
-    if (texture) {
-      const auto mean = texture->image->mean(true);
-      luminance *= (0.2126f * mean[0] + 0.7152f * mean[1] + 0.0722f * mean[2]);
+    // Power by luminance; a textured emission counts with its texture's mean.
+    std::optional<float>& power_luminance = material_luminance[mesh.material];
+    if (!power_luminance) {
+      power_luminance = spectrum_to_xyz(*material.emission).y;
+      if (texture) {
+        const auto mean = texture->image->mean(true);
+        *power_luminance *= luminance({mean[0], mean[1], mean[2]});
+      }
     }
     instance_light_base_[i] = int(lights_.size());
     for (uint32_t p = 0; p < mesh.indices.size() / 3; ++p) {
@@ -67,7 +70,7 @@ void World::add_lights() {
         for (int k = 0; k < 3; ++k) uv[k] = mesh.uv[texture->texcoord][mesh.indices[3 * p + k]];
       lights_.push_back(AreaLight{v[0], v[1], v[2], n, area, &material, uv, material.double_sided});
       // Φ = π · A · L for a one-sided Lambertian emitter; luminance stands in for L.
-      powers.push_back(area > 0 ? kPi * area * luminance * (material.double_sided ? 2.f : 1.f) : 0.f);
+      powers.push_back(area > 0 ? kPi * area * *power_luminance * (material.double_sided ? 2.f : 1.f) : 0.f);
     }
   }
   for (const PointLight& pl : scene_.point_lights) {
@@ -197,7 +200,7 @@ std::optional<SurfaceInteraction> World::intersect(Ray ray) const {
     AccelHit hit;
     if (!accel_.intersect(ray, hit)) return std::nullopt;
     SurfaceInteraction si = interaction(ray, hit);
-    if (!has_alpha_ || !cut_away(si, ray)) {
+    if (!features_.alpha || !cut_away(si, ray)) {
       si.t += travelled;
       return si;
     }

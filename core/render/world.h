@@ -26,7 +26,7 @@ class World {
   // The first surface along the ray that is not cut away by its material's alpha (glTF MASK
   // and BLEND; BLEND decided stochastically by a hash of the ray, pbrt-v4 style).
   std::optional<SurfaceInteraction> intersect(Ray ray) const;
-  bool occluded(const Ray& ray) const { return has_alpha_ ? intersect(ray).has_value() : accel_.occluded(ray); }
+  bool occluded(const Ray& ray) const { return features_.alpha ? intersect(ray).has_value() : accel_.occluded(ray); }
 
   const Scene& scene() const { return scene_; }
   const SceneFeatures& features() const { return features_; }
@@ -68,7 +68,6 @@ class World {
   std::vector<Light> lights_;
   std::vector<int> instance_light_base_;
   int environment_light_ = -1;
-  bool has_alpha_ = false;
   std::unique_ptr<const EnvironmentMap> environment_map_;
   std::unique_ptr<const Spectrum> environment_radiance_;  // the constant environment, tabulated per nm
   PowerLightSampler light_sampler_;
