@@ -24,7 +24,7 @@ Bounds3f transform_bounds(const Transform& m, const Bounds3f& b) {
   for (int corner = 0; corner < 8; ++corner) {
     const Vec3d p =
         m.point(Vec3d((corner & 1 ? b.hi : b.lo).x, (corner & 2 ? b.hi : b.lo).y, (corner & 4 ? b.hi : b.lo).z));
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+    lo = min(lo, p), hi = max(hi, p);
   }
   const double magnitude =
       std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)});
