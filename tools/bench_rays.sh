@@ -62,11 +62,15 @@ for scene in "${scenes[@]}"; do
     for t in $threads; do
       p_mrays="" e_mrays="" p_build="" e_build="" bytes=""
       for ((r = 0; r < rounds; ++r)); do
+        p_hits=() e_hits=()  # the last round's hits are the ones checked
+        if ((r == rounds - 1)); then
+          p_hits=(--hits "$out/$name.$kind.prism.hits") e_hits=(--hits "$out/$name.$kind.embree.hits")
+        fi
         p=$(nice -n 10 "$prism" bench rays "$scene" "$rays" --threads "$t" --repeat "$repeat" "${mode[@]}" \
-              --hits "$out/$name.$kind.prism.hits" 2>/dev/null | tail -1) ||
+              "${p_hits[@]}" 2>/dev/null | tail -1) ||
           { echo "bench_rays: prism bench rays failed on $rays" >&2; exit 1; }
         e=$(nice -n 10 "$raybench" embree "$scene" "$rays" --threads "$t" --repeat "$repeat" "${mode[@]}" \
-              --hits "$out/$name.$kind.embree.hits" 2>/dev/null | tail -1) ||
+              "${e_hits[@]}" 2>/dev/null | tail -1) ||
           { echo "bench_rays: raybench embree failed on $rays" >&2; exit 1; }
         p_mrays=$(best "$p_mrays" "$(field mrays_best "$p")" 1)
         e_mrays=$(best "$e_mrays" "$(field mrays_best "$e")" 1)
