@@ -91,6 +91,14 @@ struct Material {
 
   // Emitted radiance at a point (with the texture, if any), or nothing.
   std::optional<Spectrum> emission_at(const SurfacePoint& at) const;
+  // The same for the path's wavelengths; 0 where the material does not emit. (Which side emits is
+  // the caller's check: AreaLight::emits_towards.)
+  template <int N>
+  SampledSpectrum<N> emitted(const SurfacePoint& at, const SampledWavelengths<N>& lambda) const {
+    if (!emission_texture) return emission ? sample(*emission, lambda) : SampledSpectrum<N>(0.f);
+    const auto e = emission_at(at);
+    return e ? sample(*e, lambda) : SampledSpectrum<N>(0.f);
+  }
   // Opacity at a point: PbrMaterial alpha × texture × vertex colour; 1 when opaque.
   float opacity(const SurfacePoint& at) const;
 

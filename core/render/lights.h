@@ -40,11 +40,9 @@ struct AreaLight {
 
   template <int N>
   SampledSpectrum<N> radiance(const Vec3f& b, const SampledWavelengths<N>& lambda) const {
-    if (!material->emission_texture) return sample(*material->emission, lambda);
     SurfacePoint at;
-    at.uv[material->emission_texture->texcoord] = uv[0] * b.x + uv[1] * b.y + uv[2] * b.z;
-    const auto e = material->emission_at(at);
-    return e ? sample(*e, lambda) : SampledSpectrum<N>(0.f);
+    if (material->emission_texture) at.uv[material->emission_texture->texcoord] = uv[0] * b.x + uv[1] * b.y + uv[2] * b.z;
+    return material->emitted(at, lambda);
   }
 
   bool emits_towards(const Vec3f& w) const { return two_sided || dot(n, w) > 0; }

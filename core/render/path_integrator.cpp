@@ -63,8 +63,8 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     if (material.emission) {
       const int light = world.area_light(si->instance, si->prim);
       const auto& area = std::get<AreaLight>(world.lights()[light]);
-      if (const auto Le = material.emission_at(si->at); Le && area.emits_towards(si->wo))
-        add_emitted(sample(*Le, lambda), light, area.pdf_solid_angle(si->t, ray.d));
+      if (area.emits_towards(si->wo))
+        add_emitted(material.emitted(si->at, lambda), light, area.pdf_solid_angle(si->t, ray.d));
     }
     if (depth == options.max_depth) break;
 

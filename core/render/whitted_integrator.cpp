@@ -74,7 +74,7 @@ SampledSpectrum<N> shade(const Context& c, const SurfaceInteraction& si, const S
   SampledSpectrum<N> L(0.f);
   if (material.emission) {
     const auto& area = std::get<AreaLight>(c.world.lights()[c.world.area_light(si.instance, si.prim)]);
-    if (const auto Le = material.emission_at(si.at); Le && area.emits_towards(si.wo)) L += sample(*Le, lambda);
+    if (area.emits_towards(si.wo)) L += material.emitted(si.at, lambda);
   }
   if (depth == c.options.max_depth || weight < kMinBranchWeight) return L;
   if constexpr (N > 1) {
