@@ -44,19 +44,21 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     if constexpr (Media) beta *= media.transmittance(si ? si->t : kInfinity, lambda);
 
     // Light reached without sampling it: full weight after a camera or specular vertex,
-    // otherwise the MIS weight of BSDF sampling against light sampling.
-    const auto add_emitted = [&](const SampledSpectrum<N>& Le, int light, float light_pdf_solid_angle) {
+    // otherwise the MIS weight of BSDF sampling against light sampling (whose solid-angle pdf,
+    // a callable, is evaluated only then).
+    const auto add_emitted = [&](const SampledSpectrum<N>& Le, int light, const auto& light_pdf_solid_angle) {
       if (depth == 0 || specular_bounce || !options.next_event) {
         L += beta * Le;
       } else {
-        const float light_pdf = light_sampler.pmf(uint32_t(light)) * light_pdf_solid_angle;
+        const float light_pdf = light_sampler.pmf(uint32_t(light)) * light_pdf_solid_angle();
         L += beta * Le * power_heuristic(bsdf_pdf_prev, light_pdf);
       }
     };
 
     if (!si) {
       if (const Light* env = world.environment())
-        add_emitted(environment_Le(*env, ray.d, lambda), world.environment_light(), environment_pdf(*env, ray.d));
+        add_emitted(environment_Le(*env, ray.d, lambda), world.environment_light(),
+                    [&] { return environment_pdf(*env, ray.d); });
       break;
     }
     const Material& material = *si->material;
@@ -64,7 +66,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
       const int light = world.area_light(si->instance, si->prim);
       const auto& area = std::get<AreaLight>(world.lights()[light]);
       if (area.emits_towards(si->wo))
-        add_emitted(material.emitted(si->at, lambda), light, area.pdf_solid_angle(si->t, ray.d));
+        add_emitted(material.emitted(si->at, lambda), light, [&] { return area.pdf_solid_angle(si->t, ray.d); });
     }
     if (depth == options.max_depth) break;
 
