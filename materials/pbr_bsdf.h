@@ -56,10 +56,7 @@ class PbrBsdf {
 
   float pdf(const Vec3f& wo, const Vec3f& wi) const {
     if (flips(wo)) return pdf(-wo, -wi);
-    const auto p = lobe_probabilities(wo);
-    float r = p[0] * metal_.pdf(wo, wi) + p[1] * dielectric_.pdf(wo, wi);
-    if (same_hemisphere(wo, wi)) r += p[2] * cosine_hemisphere_pdf(abs_cos_theta(wi));
-    return r;
+    return mixture_pdf(wo, wi, lobe_probabilities(wo));
   }
 
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
@@ -83,7 +80,7 @@ class PbrBsdf {
     }
     if (!s) return std::nullopt;
     s->f = f(wo, s->wi);
-    s->pdf = pdf(wo, s->wi);
+    s->pdf = mixture_pdf(wo, s->wi, p);
     if (!(s->pdf > 0)) return std::nullopt;
     return s;
   }
@@ -104,6 +101,13 @@ class PbrBsdf {
 
   // Probabilities of sampling the metal, the dielectric interface and the diffuse base: each
   // lobe's share of the light reflected towards wo.
+  // Σ (probability of lobe) × (its pdf), for the probabilities of wo (not flipped).
+  float mixture_pdf(const Vec3f& wo, const Vec3f& wi, const std::array<float, 3>& p) const {
+    float r = p[0] * metal_.pdf(wo, wi) + p[1] * dielectric_.pdf(wo, wi);
+    if (same_hemisphere(wo, wi)) r += p[2] * cosine_hemisphere_pdf(abs_cos_theta(wi));
+    return r;
+  }
+
   std::array<float, 3> lobe_probabilities(const Vec3f& wo) const {
     const float e = E(wo.z);
     std::array<float, 3> w = {metallic_, (1 - metallic_) * (e + transmission_ * (1 - e)),
