@@ -1,0 +1,192 @@
+// glTF materials: the metallic–roughness model with the KHR material extensions Prism honours,
+// textures (with KHR_texture_transform) and their images, decoded on first use.
+
+#include <cmath>
+
+#include "base/log.h"
+#include "materials/catalogue.h"
+#include "scene/gltf_import.h"
+
+namespace prism {
+
+Material GltfLoader::convert_material(const tinygltf::Material& m, int index) {
+  const std::string context = fmt::format("material {} '{}'", index, m.name);
+  Material out;
+  out.name = m.name.empty() ? fmt::format("material{}", index) : m.name;
+  out.double_sided = m.doubleSided;
+  const auto& bc = m.pbrMetallicRoughness.baseColorFactor;
+  if (bc.size() != 4 || !all_finite(bc)) fail("{}: {}: baseColorFactor must be 4 finite numbers", file_, context);
+  PbrMaterial surface_model = surface(m, Rgb{float(bc[0]), float(bc[1]), float(bc[2])}, context);
+  surface_model.alpha = std::clamp(float(bc[3]), 0.f, 1.f);
+  const auto& pbr = m.pbrMetallicRoughness;
+  surface_model.base_color_texture =
+      texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions, context);
+  surface_model.metallic_roughness_texture =
+      texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+              pbr.metallicRoughnessTexture.extensions, context);
+  surface_model.transmission_texture =
+      extension_texture(m, "KHR_materials_transmission", "transmissionTexture", context);
+  surface_model.thickness_texture = extension_texture(m, "KHR_materials_volume", "thicknessTexture", context);
+  out.kind = std::move(surface_model);
+  out.normal_texture = texture(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions, context);
+  out.normal_scale = float(m.normalTexture.scale);
+  if (m.alphaMode == "MASK")
+    out.alpha_mode = AlphaMode::mask;
+  else if (m.alphaMode == "BLEND")
+    out.alpha_mode = AlphaMode::blend;
+  else if (m.alphaMode != "OPAQUE")
+    fail("{}: {}: unknown alphaMode '{}'", file_, context, m.alphaMode);
+  out.alpha_cutoff = float(m.alphaCutoff);
+  const auto& ef = m.emissiveFactor;
+  if (ef.size() != 3 || !all_finite(ef)) fail("{}: {}: emissiveFactor must be 3 finite numbers", file_, context);
+  double strength = 1;
+  if (const auto it = m.extensions.find("KHR_materials_emissive_strength"); it != m.extensions.end()) {
+    const auto& v = it->second.Get("emissiveStrength");
+    if (v.IsNumber()) strength = v.GetNumberAsDouble();
+    if (!std::isfinite(strength) || strength < 0)
+      fail("{}: {}: emissiveStrength must be a non-negative number", file_, context);
+  }
+  out.emission_rgb = {float(ef[0] * strength), float(ef[1] * strength), float(ef[2] * strength)};
+  if (out.emission_rgb.max() > 0) {
+    out.emission = RgbIlluminantSpectrum(out.emission_rgb);
+    out.emission_texture =
+        texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions, context);
+  }
+  return out;
+}
+
+// --- textures -----------------------------------------------------------------------------
+
+// The decoded image of glTF image `index` (decoded once, on first use).
+std::shared_ptr<const Image> GltfLoader::image(int index, const std::string& context) {
+  check_index(index, model_.images, "image", context);
+  auto& cached = images_[index];
+  if (cached) return cached;
+  const tinygltf::Image& img = model_.images[index];
+  if (img.image.empty()) fail("{}: {}: image {} has no data", file_, context, index);
+  cached = Image::decode(img.image.data(), img.image.size(),
+                         fmt::format("{}: image {} '{}'", file_, index, img.uri.empty() ? img.name : img.uri));
+  return cached;
+}
+
+// glTF texture `index` read with TEXCOORD_`texcoord` and its KHR_texture_transform, or nothing.
+std::optional<Texture> GltfLoader::texture(int index, int texcoord, const tinygltf::ExtensionMap& extensions,
+                                           const std::string& context) {
+  if (index < 0) return std::nullopt;
+  check_index(index, model_.textures, "texture", context);
+  const tinygltf::Texture& t = model_.textures[index];
+  if (t.source < 0) fail("{}: {}: texture {} has no image source", file_, context, index);
+  Texture out;
+  out.image = image(t.source, context);
+  out.texcoord = texcoord;
+  if (t.sampler >= 0) {
+    check_index(t.sampler, model_.samplers, "sampler", context);
+    const tinygltf::Sampler& s = model_.samplers[t.sampler];
+    const auto wrap = [&](int mode) {
+      if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return Wrap::clamp_to_edge;
+      if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return Wrap::mirrored_repeat;
+      return Wrap::repeat;
+    };
+    out.wrap_s = wrap(s.wrapS);
+    out.wrap_t = wrap(s.wrapT);
+    out.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+  }
+  if (const auto it = extensions.find("KHR_texture_transform"); it != extensions.end()) {
+    const auto& x = it->second;
+    const auto vec2 = [&](const char* key, Vec2f fallback) {
+      if (!x.Has(key)) return fallback;
+      const auto& v = x.Get(key);
+      if (!v.IsArray() || v.ArrayLen() != 2)
+        fail("{}: {}: KHR_texture_transform.{} must hold 2 numbers", file_, context, key);
+      return Vec2f(float(v.Get(0).GetNumberAsDouble()), float(v.Get(1).GetNumberAsDouble()));
+    };
+    out.transform.offset = vec2("offset", {0, 0});
+    out.transform.scale = vec2("scale", {1, 1});
+    if (x.Has("rotation")) out.transform.rotation = float(x.Get("rotation").GetNumberAsDouble());
+    if (x.Has("texCoord")) out.texcoord = x.Get("texCoord").GetNumberAsInt();
+  }
+  if (out.texcoord < 0 || out.texcoord > 1)
+    fail("{}: {}: texture coordinate set {} (Prism reads TEXCOORD_0 and _1)", file_, context, out.texcoord);
+  return out;
+}
+
+// A texture named inside a material extension, e.g. KHR_materials_transmission's transmissionTexture.
+std::optional<Texture> GltfLoader::extension_texture(const tinygltf::Material& m, const char* extension,
+                                                     const char* field, const std::string& context) {
+  const auto it = m.extensions.find(extension);
+  if (it == m.extensions.end() || !it->second.Has(field)) return std::nullopt;
+  const auto& info = it->second.Get(field);
+  if (!info.IsObject() || !info.Has("index")) fail("{}: {}: {}.{} needs an index", file_, context, extension, field);
+  tinygltf::ExtensionMap ext;
+  if (info.Has("extensions") && info.Get("extensions").Has("KHR_texture_transform"))
+    ext["KHR_texture_transform"] = info.Get("extensions").Get("KHR_texture_transform");
+  return texture(info.Get("index").GetNumberAsInt(), info.Has("texCoord") ? info.Get("texCoord").GetNumberAsInt() : 0,
+                 ext, context);
+}
+
+// glTF's metallic-roughness parameters with the KHR extensions Prism honours; extras may name
+// a catalogue metal ({"prism": {"metal": "Cu"}}) or glass ({"prism": {"glass": "N-BK7"}}).
+PbrMaterial GltfLoader::surface(const tinygltf::Material& m, Rgb base, const std::string& context) {
+  const auto number = [&](const char* ext, const char* field, double fallback, double lo, double hi) {
+    const double v = extension_number(m, ext, field, fallback);
+    if (!(v >= lo && v <= hi)) fail("{}: {}: {}.{} must be a number in [{}, {}]", file_, context, ext, field, lo, hi);
+    return v;
+  };
+  PbrMaterial p;
+  p.base_color = base;
+  p.metallic = std::clamp(float(m.pbrMetallicRoughness.metallicFactor), 0.f, 1.f);
+  p.roughness = std::clamp(float(m.pbrMetallicRoughness.roughnessFactor), 0.f, 1.f);
+  p.transmission = float(number("KHR_materials_transmission", "transmissionFactor", 0, 0, 1));
+  p.specular = float(number("KHR_materials_specular", "specularFactor", 1, 0, 1));
+  if (const auto it = m.extensions.find("KHR_materials_specular");
+      it != m.extensions.end() && it->second.Has("specularColorFactor"))
+    warn_once("KHR_materials_specular's specularColorFactor is not supported; using the factor only");
+
+  IorModel ior_model = ConstantIor{float(number("KHR_materials_ior", "ior", 1.5, 1, 1e3))};
+  if (const std::string glass = prism_extra(m, "glass"); !glass.empty()) {
+    ior_model = MaterialCatalogue::standard().dielectric(glass);
+    p.metallic = 0;
+    p.transmission = 1;
+  } else if (const double dispersion = number("KHR_materials_dispersion", "dispersion", 0, 0, 1e6); dispersion > 0) {
+    // KHR_materials_dispersion: dispersion = 20 / V_d.
+    ior_model = AbbeIor{std::get<ConstantIor>(ior_model).n, float(20 / dispersion)};
+  }
+  // KHR_materials_volume: thickness 0 is a thin wall; otherwise a closed volume absorbing with
+  // σ_a = −ln(attenuationColor) / attenuationDistance per channel (world units).
+  const double thickness = number("KHR_materials_volume", "thicknessFactor", 0, 0, 1e30);
+  const double distance = number("KHR_materials_volume", "attenuationDistance", kInfinity, 0, kInfinity);
+  std::optional<Spectrum> absorption;
+  if (thickness > 0 && std::isfinite(distance)) {
+    Rgb sigma;
+    const auto color = m.extensions.at("KHR_materials_volume").Get("attenuationColor");
+    for (int c = 0; c < 3; ++c) {
+      const double a = color.IsArray() && color.ArrayLen() == 3 ? color.Get(c).GetNumberAsDouble() : 1.0;
+      if (!(a >= 0 && a <= 1)) fail("{}: {}: attenuationColor must hold 3 numbers in [0, 1]", file_, context);
+      sigma[c] = float(-std::log(std::max(a, 1e-30)) / std::max(distance, 1e-30));
+    }
+    if (sigma.max() > 0) absorption = RgbUnboundedSpectrum(sigma);
+  }
+  p.dielectric = Dielectric(std::move(ior_model), std::move(absorption), thickness == 0);
+  if (const std::string metal = prism_extra(m, "metal"); !metal.empty()) {
+    p.metal = MaterialCatalogue::standard().metal(metal);
+    p.metallic = 1;
+  }
+  return p;
+}
+
+uint32_t GltfLoader::material_index(int gltf_material, const std::string& context) {
+  if (gltf_material < 0) {
+    // glTF's default material: white, metallic 1, roughness 1 (glTF 2.0 §3.9.2).
+    if (default_material_ < 0) {
+      default_material_ = int(scene_.materials.size());
+      scene_.materials.push_back({.name = "default", .kind = PbrMaterial{}});
+    }
+    return uint32_t(default_material_);
+  }
+  check_index(gltf_material, model_.materials, "material", context);
+  auto [it, inserted] = material_map_.try_emplace(gltf_material, uint32_t(scene_.materials.size()));
+  if (inserted) scene_.materials.push_back(convert_material(model_.materials[gltf_material], gltf_material));
+  return it->second;
+}
+
+}  // namespace prism
