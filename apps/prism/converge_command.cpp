@@ -74,10 +74,11 @@ Errors errors(const std::vector<float>& image, const std::vector<float>& referen
 }
 
 std::vector<float> render_rgb(const PreparedScene& p, const RenderOptions& options, RenderStats* stats = nullptr) {
-  RenderResult r = render(*p.world, *p.camera, options);
-  ColorPipeline::standard().convert(ColorPipeline::kXyz, ColorPipeline::kDefaultOutput, r.xyz.data(), r.xyz.size() / 3);
-  if (stats) *stats = r.stats;
-  return r.xyz;
+  const RenderResult r = render(*p.world, *p.camera, options);
+  std::vector<float> rgb = r.state.film.xyz_image();
+  ColorPipeline::standard().convert(ColorPipeline::kXyz, ColorPipeline::kDefaultOutput, rgb.data(), rgb.size() / 3);
+  if (stats) *stats = r.stats();
+  return rgb;
 }
 
 std::vector<float> reference_image(const ConvergeArgs& args, const PreparedScene& p) {
