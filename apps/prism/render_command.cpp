@@ -30,8 +30,11 @@ struct RenderArgs {
 };
 
 uint32_t parse_aovs(const std::string& text) {
-  const std::pair<const char*, Aov> names[] = {
-      {"albedo", kAovAlbedo}, {"normal", kAovNormal}, {"depth", kAovDepth}, {"variance", kAovVariance}, {"spp", kAovSpp}};
+  const std::pair<const char*, Aov> names[] = {{"albedo", kAovAlbedo},
+                                               {"normal", kAovNormal},
+                                               {"depth", kAovDepth},
+                                               {"variance", kAovVariance},
+                                               {"spp", kAovSpp}};
   uint32_t aovs = 0;
   std::stringstream ss(text);
   std::string cell;

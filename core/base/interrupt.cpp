@@ -22,6 +22,8 @@ std::atomic<bool> g_claimed[kSlots], g_used[kSlots];
 void handle(int sig) {
   if (g_signals.fetch_add(1) == 0) {
     g_requested.store(true);
+    static const char message[] = "\nprism: stopping after this pass (signal again to abort at once)\n";
+    [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, message, sizeof(message) - 1);
     return;
   }
   for (int i = 0; i < kSlots; ++i)

@@ -92,8 +92,7 @@ RenderState load_checkpoint(const std::filesystem::path& file, const std::string
   r.bytes(magic, sizeof(magic));
   if (!std::equal(magic, magic + sizeof(magic), kMagic)) fail("{}: not a Prism checkpoint file", file.string());
   if (r.text() != fingerprint)
-    fail("{}: the checkpoint was written for another scene or other options; render without --resume",
-         file.string());
+    fail("{}: the checkpoint was written for another scene or other options; render without --resume", file.string());
   const int width = r.value<int32_t>(), height = r.value<int32_t>();
   const uint32_t aovs = r.value<uint32_t>();
   const std::string bins = r.text();

@@ -93,11 +93,11 @@ class Film {
   int width_, height_;
   uint32_t aovs_;
   SpectralBins bins_;
-  std::vector<double> sum_;               // XYZ sums
-  std::vector<double> y_mean_, y_m2_;     // Welford: mean and Σ squared deviations of Y
-  std::vector<uint32_t> count_;           // samples
-  std::vector<double> aov_;               // kAovFields sums per pixel, when AOVs are on
-  std::vector<double> spectral_;          // bins_.count() sums per pixel
+  std::vector<double> sum_;            // XYZ sums
+  std::vector<double> y_mean_, y_m2_;  // Welford: mean and Σ squared deviations of Y
+  std::vector<uint32_t> count_;        // samples
+  std::vector<double> aov_;            // kAovFields sums per pixel, when AOVs are on
+  std::vector<double> spectral_;       // bins_.count() sums per pixel
 };
 
 }  // namespace prism

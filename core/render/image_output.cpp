@@ -21,7 +21,6 @@
 
 namespace prism {
 
-
 void write_exr(const std::filesystem::path& file, const ExrImage& image, bool half) {
   if (image.rgb.size() != size_t(image.width) * image.height * 3) fail("{}: image size mismatch", file.string());
   write_atomically(file, [&](const std::filesystem::path& tmp) {

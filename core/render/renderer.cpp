@@ -85,8 +85,8 @@ struct PassStats {
 
 // Takes every active pixel of the tile at (x0, y0) from the samples it has to `end`.
 template <int N>
-void render_tile(const World& world, const Camera& camera, const RenderOptions& options, RadianceFn<N> radiance,
-                 int x0, int y0, int end, const std::vector<uint8_t>& active, Film& film, PassStats& stats) {
+void render_tile(const World& world, const Camera& camera, const RenderOptions& options, RadianceFn<N> radiance, int x0,
+                 int y0, int end, const std::vector<uint8_t>& active, Film& film, PassStats& stats) {
   Sampler sampler(options.seed, options.sampler);
   const bool first_hits = options.aovs & (kAovAlbedo | kAovNormal | kAovDepth);
   const int bins = film.bins().count();
@@ -119,8 +119,7 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
   const int tiles_x = (camera.width() + kTileSize - 1) / kTileSize;
   const int tiles_y = (camera.height() + kTileSize - 1) / kTileSize;
   const int passes = pass_count(options.spp);
-  Progress progress("render", int64_t(passes - std::min(state.passes, passes)) * tiles_x * tiles_y,
-                    options.progress);
+  Progress progress("render", int64_t(passes - std::min(state.passes, passes)) * tiles_x * tiles_y, options.progress);
   std::mutex stats_mutex;
   std::vector<uint8_t> active;  // empty: all pixels
   const auto start = std::chrono::steady_clock::now();
@@ -137,8 +136,8 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
     }
     parallel_for(int64_t(tiles_x) * tiles_y, [&](int64_t tile) {
       PassStats ps;
-      render_tile<N>(world, camera, options, radiance, int(tile % tiles_x) * kTileSize,
-                     int(tile / tiles_x) * kTileSize, end, active, state.film, ps);
+      render_tile<N>(world, camera, options, radiance, int(tile % tiles_x) * kTileSize, int(tile / tiles_x) * kTileSize,
+                     end, active, state.film, ps);
       {
         std::lock_guard lock(stats_mutex);
         state.stats.rays += ps.rays;
@@ -182,10 +181,11 @@ std::string RenderStats::summary() const {
 RenderResult render(const World& world, const Camera& camera, const RenderOptions& options,
                     const RenderControl& control, std::optional<RenderState> resume) {
   if (options.spp <= 0) fail("samples per pixel must be positive (got {})", options.spp);
-  if (!(options.noise_threshold >= 0)) fail("the noise threshold must be non-negative (got {})", options.noise_threshold);
+  if (!(options.noise_threshold >= 0))
+    fail("the noise threshold must be non-negative (got {})", options.noise_threshold);
   if (resume && (resume->film.width() != camera.width() || resume->film.height() != camera.height()))
-    fail("the state to resume is {}x{}, the camera {}x{}", resume->film.width(), resume->film.height(),
-         camera.width(), camera.height());
+    fail("the state to resume is {}x{}, the camera {}x{}", resume->film.width(), resume->film.height(), camera.width(),
+         camera.height());
   cie();  // load the colour tables before the threads start, so errors surface here
   switch (options.wavelengths) {
     case 1:

@@ -49,7 +49,8 @@ TEST_CASE("error estimate: a grey sphere filling the image under a uniform sky (
   scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
   // The sphere subtends ±11.5°; a 12° field of view sees only the sphere.
   const Film film = render_film(scene, test::look_at({0, 0, 5.f}, {0, 0, 0}, 12.f), 48, 4, 11);
-  check_estimate(film, true_rel_rmse(film, [](size_t) { return 0.5; }, [](size_t) { return 0.0; }));
+  check_estimate(film, true_rel_rmse(
+                           film, [](size_t) { return 0.5; }, [](size_t) { return 0.0; }));
 }
 
 TEST_CASE("error estimate: inside a closed emitting sphere (Y = Le / (1 - albedo) exactly)") {
@@ -60,7 +61,8 @@ TEST_CASE("error estimate: inside a closed emitting sphere (Y = Le / (1 - albedo
   scene.materials.push_back(m);
   test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 2, 0));
   const Film film = render_film(scene, test::look_at({0, 0, 0.3f}, {0, 0, -1}, 60.f), 48, 8, 12, 1000);
-  check_estimate(film, true_rel_rmse(film, [](size_t) { return 1.0; }, [](size_t) { return 0.0; }));
+  check_estimate(film, true_rel_rmse(
+                           film, [](size_t) { return 1.0; }, [](size_t) { return 0.0; }));
 }
 
 TEST_CASE("error estimate: the default scene against a long reference") {

@@ -24,7 +24,9 @@ struct Setup {
   std::unique_ptr<Camera> camera;
 
   Setup(Scene s, const CameraDesc& c, int width, int height)
-      : scene(std::move(s)), world(std::make_unique<World>(scene)), camera(std::make_unique<Camera>(c, width, height)) {}
+      : scene(std::move(s)),
+        world(std::make_unique<World>(scene)),
+        camera(std::make_unique<Camera>(c, width, height)) {}
 
   RenderResult render(RenderOptions options, const RenderControl& control = {},
                       std::optional<RenderState> resume = {}) const {
@@ -38,8 +40,7 @@ struct Setup {
 Setup caustic_scene(int width = 32, int height = 24) {
   Scene scene;
   scene.materials.push_back(test::diffuse({0.8f, 0.8f, 0.8f}, "floor"));
-  scene.materials.push_back(
-      Material{.name = "glass", .kind = PbrMaterial::glass(Dielectric(ConstantIor{1.5f}))});
+  scene.materials.push_back(Material{.name = "glass", .kind = PbrMaterial::glass(Dielectric(ConstantIor{1.5f}))});
   Material lamp = test::diffuse({0, 0, 0}, "lamp");
   lamp.emission = RgbIlluminantSpectrum(Rgb{400, 400, 400});
   scene.materials.push_back(lamp);
@@ -206,6 +207,7 @@ TEST_CASE("adaptive sampling spends fewer samples on a flat background than on a
     variance += a.variance_of_mean(p) + u.variance_of_mean(p);
   }
   const double n = double(u.pixel_count());
-  INFO("mean Y uniform " << mean_u / n << ", adaptive " << mean_a / n << ", standard error " << std::sqrt(variance) / n);
+  INFO("mean Y uniform " << mean_u / n << ", adaptive " << mean_a / n << ", standard error "
+                         << std::sqrt(variance) / n);
   CHECK(std::abs(mean_a - mean_u) / n < 4 * std::sqrt(variance) / n);
 }
