@@ -136,7 +136,7 @@ TEST_CASE("a second signal aborts at once, leaving no output and no temporary fi
   }
 }
 
-TEST_CASE("--time-limit stops after a pass and records the samples taken") {
+TEST_CASE("render --time-limit stops after a pass and records the samples taken") {
   const auto dir = test::temp_dir("time_limit");
   const auto exr = dir / "out.exr";
   std::string err;
@@ -150,7 +150,7 @@ TEST_CASE("--time-limit stops after a pass and records the samples taken") {
   CHECK(header_value<Imf::DoubleAttribute>(exr, "prism.timeLimit") == 0.01);
 }
 
-TEST_CASE("--checkpoint and --resume continue a time-limited render to the image of the straight render") {
+TEST_CASE("render --checkpoint and --resume continue a time-limited render to the image of the straight render") {
   const auto dir = test::temp_dir("resume");
   const auto straight = dir / "straight.exr", out = dir / "out.exr";
   const auto checkpoint = dir / "out.exr.checkpoint";
@@ -172,7 +172,7 @@ TEST_CASE("--checkpoint and --resume continue a time-limited render to the image
   CHECK(err.find("out.exr.checkpoint") != std::string::npos);
 }
 
-TEST_CASE("--aov writes OpenEXR layers named as compositors expect") {
+TEST_CASE("render --aov writes OpenEXR layers named as compositors expect") {
   const auto dir = test::temp_dir("aov");
   const auto exr = dir / "out.exr";
   std::string err;
