@@ -12,8 +12,8 @@ Film::Film(int width, int height, uint32_t aovs, SpectralBins bins)
       aovs_(aovs),
       bins_(std::move(bins)),
       sum_(pixel_count() * 3, 0.0),
-      y_mean_(pixel_count(), 0.0),
-      y_m2_(pixel_count(), 0.0),
+      mean_(pixel_count() * 3, 0.0),
+      m2_(pixel_count() * 3, 0.0),
       count_(pixel_count(), 0),
       aov_(aovs & (kAovAlbedo | kAovNormal | kAovDepth) ? pixel_count() * kAovFields : 0, 0.0),
       spectral_(pixel_count() * bins_.count(), 0.0) {}
@@ -27,9 +27,12 @@ void Film::add(size_t p, const FilmSample& s) {
   sum[2] += xyz.z;
   // Welford's update of the mean and of the sum of squared deviations.
   const uint32_t n = ++count_[p];
-  const double delta = xyz.y - y_mean_[p];
-  y_mean_[p] += delta / n;
-  y_m2_[p] += delta * (xyz.y - y_mean_[p]);
+  const double x[3] = {xyz.x, xyz.y, xyz.z};
+  for (int c = 0; c < 3; ++c) {
+    const double delta = x[c] - mean_[p * 3 + c];
+    mean_[p * 3 + c] += delta / n;
+    m2_[p * 3 + c] += delta * (x[c] - mean_[p * 3 + c]);
+  }
   if (!aov_.empty()) {
     double* a = &aov_[p * kAovFields];
     a[0] += s.albedo.x;

@@ -1,7 +1,7 @@
 #pragma once
 // The film: per pixel, the sum of its CIE XYZ sample estimates (box filter over the pixel's
-// area) and their count, the running mean and spread of the samples' luminance Y for the
-// pixel's own error (Welford 1962, "Note on a method for calculating corrected sums of squares
+// area) and their count, the running mean and spread of the samples' X, Y and Z for the pixel's
+// own error (Welford 1962, "Note on a method for calculating corrected sums of squares
 // and products", Technometrics 4(3)), and on request the first-hit AOV sums and spectral bins.
 //
 // Summation order is fixed: a pixel's samples are added one by one in sample-index order, by
@@ -52,13 +52,16 @@ class Film {
   void add_spectral(size_t p, float lambda, double weighted_radiance);
 
   uint32_t samples(size_t p) const { return count_[p]; }
-  // Mean luminance Y of pixel p and the estimated variance of that mean: s²/n, with s² the
-  // unbiased sample variance of the pixel's samples.
-  double mean_y(size_t p) const { return y_mean_[p]; }
-  double variance_of_mean(size_t p) const {
+  // Mean of channel c (0, 1, 2: X, Y, Z) of pixel p's samples, and the estimated variance of that
+  // mean: s²/n, with s² the unbiased sample variance of the pixel's samples.
+  double mean(size_t p, int c) const { return mean_[p * 3 + c]; }
+  double variance_of_mean(size_t p, int c) const {
     const uint32_t n = count_[p];
-    return n > 1 ? y_m2_[p] / (double(n - 1) * n) : 0.0;
+    return n > 1 ? m2_[p * 3 + c] / (double(n - 1) * n) : 0.0;
   }
+  // The same for the luminance Y.
+  double mean_y(size_t p) const { return mean(p, 1); }
+  double variance_of_mean(size_t p) const { return variance_of_mean(p, 1); }
 
   // Interleaved per-pixel means (top row first) of XYZ, of the albedo XYZ and of the normal; the
   // mean depth of the samples that hit (+inf where none did); the spectral bins' mean spectral
@@ -80,11 +83,11 @@ class Film {
   // The raw fields, in a fixed order, for checkpoint files (to write, and to read back).
   template <typename Visit>
   void visit_fields(Visit&& visit) const {
-    visit(sum_), visit(y_mean_), visit(y_m2_), visit(count_), visit(aov_), visit(spectral_);
+    visit(sum_), visit(mean_), visit(m2_), visit(count_), visit(aov_), visit(spectral_);
   }
   template <typename Visit>
   void visit_fields(Visit&& visit) {
-    visit(sum_), visit(y_mean_), visit(y_m2_), visit(count_), visit(aov_), visit(spectral_);
+    visit(sum_), visit(mean_), visit(m2_), visit(count_), visit(aov_), visit(spectral_);
   }
 
  private:
@@ -93,11 +96,11 @@ class Film {
   int width_, height_;
   uint32_t aovs_;
   SpectralBins bins_;
-  std::vector<double> sum_;            // XYZ sums
-  std::vector<double> y_mean_, y_m2_;  // Welford: mean and Σ squared deviations of Y
-  std::vector<uint32_t> count_;        // samples
-  std::vector<double> aov_;            // kAovFields sums per pixel, when AOVs are on
-  std::vector<double> spectral_;       // bins_.count() sums per pixel
+  std::vector<double> sum_;        // XYZ sums
+  std::vector<double> mean_, m2_;  // Welford: XYZ means and Σ squared deviations
+  std::vector<uint32_t> count_;    // samples
+  std::vector<double> aov_;        // kAovFields sums per pixel, when AOVs are on
+  std::vector<double> spectral_;   // bins_.count() sums per pixel
 };
 
 }  // namespace prism
