@@ -1,11 +1,16 @@
 #pragma once
-// Sample generators for Monte Carlo integration. Every (pixel, sample index) pair starts its own
-// deterministic stream, so images do not depend on thread count or tile order.
-//   independent: uniform random numbers (a PCG32 stream per pixel, jumped ahead per sample);
-//   sobol:       the (0,2)-sequence of Sobol's first two dimensions, Owen-scrambled and with
+// Sample generators for Monte Carlo integration. Every (pixel, sample index, seed) triple
+// addresses its own sample, whatever the total count, so images do not depend on thread count,
+// tile order or how a pixel's samples are split into passes or across machines.
+//   sobol (default): the (0,2)-sequence of Sobol's first two dimensions, Owen-scrambled and with
 //                its samples shuffled independently for every requested dimension ("padded"),
-//                so that each 1D or 2D request is stratified over a pixel's samples (Burley
-//                2020, "Practical Hash-based Owen Scrambling", JCGT 9(4)). Best with 2^k spp.
+//                so that each 1D or 2D request is stratified over a pixel's samples and
+//                different dimensions are uncorrelated (Burley 2020, "Practical Hash-based Owen
+//                Scrambling", JCGT 9(4)). The shuffle is itself a nested scramble of the index,
+//                so a pixel's first 2^j samples are always one aligned block of the sequence, a
+//                (0,j,2)-net: any count n is the union of the nets of n's binary digits, so it is
+//                stratified at every count, not only at powers of two.
+//   independent: uniform random numbers (a PCG32 stream per pixel, jumped ahead per sample).
 
 #include <cstdint>
 
@@ -56,7 +61,7 @@ constexpr float to_unit(uint32_t x) { return float(x >> 8) * 0x1p-24f; }
 
 class Sampler {
  public:
-  explicit Sampler(uint64_t seed = 0, SamplerKind kind = SamplerKind::independent) : seed_(seed), kind_(kind) {}
+  explicit Sampler(uint64_t seed = 0, SamplerKind kind = SamplerKind::sobol) : seed_(seed), kind_(kind) {}
 
   void start_pixel_sample(Vec2i pixel, int64_t sample_index) {
     pixel_hash_ = hash_ints(pixel.x, pixel.y, seed_);
@@ -67,6 +72,13 @@ class Sampler {
       rng_.advance(uint64_t(sample_index) * 65536ull);
     }
   }
+
+  // Dimensions in a fixed layout: the camera's (pixel jitter, wavelengths) first, then a block of
+  // kBounceDimensions per bounce, so each dimension serves one purpose in every sample of a pixel
+  // even when a path skips a draw (no light sample at a specular vertex, no roulette at the
+  // first), and stays stratified over the pixel's samples at any depth.
+  static constexpr uint32_t kCameraDimensions = 2, kBounceDimensions = 8;
+  void start_bounce(int depth) { dimension_ = kCameraDimensions + uint32_t(depth) * kBounceDimensions; }
 
   float get_1d() {
     if (kind_ == SamplerKind::independent) return rng_.uniform();
