@@ -493,10 +493,19 @@ def equal_error(a, harness, exrstats, assets_dir):
                   "%.2f; error at %d spp Prism/Cycles %.2f; time per sample Prism/Cycles %.2f"
                   % (target, top_c["spp"], top_c["seconds"], t_prism, " (extrapolated)" if extrapolated else "",
                      r["ratio"], top_c["spp"], r["error_ratio"], r["sample_time_ratio"]))
+            with open(os.path.join(work, "equal_error.json"), "w") as f:
+                json.dump(r, f)
             results.append(r)
         except Exception as e:  # one asset failing must not hide the others
             print("  FAILED: %s" % e, flush=True)
             failed.append(name)
+    # The summary holds every asset measured into --out so far, so a run split by asset still gets one table.
+    results = []
+    for name in ASSETS:
+        path = os.path.join(a.out, name, "equal_error.json")
+        if os.path.isfile(path) and name not in failed:
+            with open(path) as f:
+                results.append(json.load(f))
     if results:
         write_equal_error_summary(a, results, failed)
     return 1 if failed else 0
