@@ -50,7 +50,7 @@ CameraSample<N> camera_sample(const World& world, const Camera& camera, const Re
                               RadianceFn<N> radiance, Sampler& sampler, Vec2i pixel, int s, RayCounters& rays) {
   sampler.start_pixel_sample(pixel, s);
   const Vec2f jitter = sampler.get_2d();
-  CameraSample<N> c{SampledWavelengths<N>::sample(sampler.get_1d()), {}, {}, {}};
+  CameraSample<N> c{SampledWavelengths<N>::sample(sampler.get_2d()), {}, {}, {}};
   c.ray = camera.generate_ray(float(pixel.x) + jitter.x, float(pixel.y) + jitter.y);
   c.L = radiance(world, c.ray, c.lambda, sampler, options.path, rays);
   c.xyz = to_xyz(c.L, c.lambda);
