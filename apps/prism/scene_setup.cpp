@@ -119,9 +119,11 @@ namespace {
 
 void build_world(PreparedScene& p, const SceneArgs& args) {
   const Scene& scene = p.gltf->scene();
-  const CameraDesc camera_desc = choose_camera(scene, args);
-  const Vec2i size = resolve_resolution(args.width, args.height, camera_desc);
-  p.camera = std::make_unique<Camera>(camera_desc, size.x, size.y);
+  if (!p.camera || !scene.cameras.empty()) {  // a framing camera stays as the first pose framed it
+    const CameraDesc camera_desc = choose_camera(scene, args);
+    const Vec2i size = resolve_resolution(args.width, args.height, camera_desc);
+    p.camera = std::make_unique<Camera>(camera_desc, size.x, size.y);
+  }
 
   const auto t0 = std::chrono::steady_clock::now();
   p.world.reset();

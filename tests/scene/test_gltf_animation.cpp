@@ -181,3 +181,22 @@ TEST_CASE("a loaded file re-poses for each frame, rewriting only what moved") {
   check_near(world_vertex(gltf.scene(), 0, 1),
              {std::cos(a) + 0.25 * std::sin(a), 0, -std::sin(a) + 0.25 * std::cos(a)});
 }
+
+TEST_CASE("prism render --frames renders an animation's frames to a numbered sequence") {
+  const auto file = animated_file();
+  const auto dir = test::temp_dir("gltf_frames");
+  const std::string common = "render \"" + file.string() + "\" --spp 1 --width 8 --height 8 --env 1,1,1 -q";
+  std::string err;
+  REQUIRE(test::run_prism(common + " -o \"" + (dir / "out.##.exr").string() + "\" --frames 1:3 --fps 2", &err) == 0);
+  INFO(err);
+  for (const char* frame : {"out.01.exr", "out.02.exr", "out.03.exr"}) CHECK(std::filesystem::exists(dir / frame));
+  // Without a # pattern the frame number goes before the extension.
+  REQUIRE(test::run_prism(common + " -o \"" + (dir / "plain.exr").string() + "\" --frames 0:0") == 0);
+  CHECK(std::filesystem::exists(dir / "plain.0000.exr"));
+  // Bad ranges fail before any work.
+  CHECK(test::run_prism(common + " -o \"" + (dir / "bad.#.exr").string() + "\" --frames 3:1", &err) == 1);
+  CHECK(err.find("--frames '3:1'") != std::string::npos);
+  CHECK(test::run_prism(common + " -o \"" + (dir / "bad.#.exr").string() + "\" --frames 0:1 --time 1") == 2);
+  CHECK(test::run_prism(common + " -o \"" + (dir / "bad.#.exr").string() + "\" --frames 0:1 --fps 0") == 1);
+  CHECK_FALSE(std::filesystem::exists(dir / "bad.0.exr"));
+}
