@@ -36,7 +36,7 @@ void check_near(const Vec3d& got, const Vec3d& expected) {
 
 }  // namespace
 
-TEST_CASE("morph targets blend with the node's weights, else the mesh's; sparse targets too") {
+TEST_CASE("morph targets blend with the node's weights, else the mesh's, sparse targets too") {
   test::GltfBuilder b;
   const int pos = b.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
   const int nrm = b.floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");

@@ -60,7 +60,7 @@ TEST_CASE("triangle strips and fans become the triangles glTF's winding rules gi
   CHECK(err.find("not rendered") == err.rfind("not rendered"));
 }
 
-TEST_CASE("--scene chooses among the file's scenes; the file's `scene` is the default") {
+TEST_CASE("the option --scene chooses among the file's scenes, by default the file's `scene`") {
   test::GltfBuilder b;
   const int pos = b.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
   const auto file = write("scenes", b.json(fmt::format(R"(
