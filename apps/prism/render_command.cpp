@@ -79,7 +79,7 @@ void run(const RenderArgs& args) {
   if (!(args.fps > 0 && std::isfinite(args.fps))) fail("--fps {}: must be a positive number", args.fps);
   SceneArgs scene_args = args.scene;
   scene_args.gltf.time = range.first / args.fps;
-  PreparedScene prepared = prepare_scene(scene_args);
+  PreparedScene prepared = prepare_scene(scene_args, true);
   if (!prepared.gltf->animated()) log::warn("{}: nothing is animated; every frame is the same image", args.scene.scene);
   const auto t0 = std::chrono::steady_clock::now();
   for (int frame = range.first; frame <= range.last; ++frame) {

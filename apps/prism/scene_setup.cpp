@@ -141,7 +141,7 @@ bool pose_scene(PreparedScene& p, const SceneArgs& args, double seconds) {
   return true;
 }
 
-PreparedScene prepare_scene(const SceneArgs& args) {
+PreparedScene prepare_scene(const SceneArgs& args, bool keep_file) {
   std::optional<Rgb> env;
   if (!args.env.empty()) env = parse_rgb(args.env, "--env");
   cie();  // fail early if the data files are missing
@@ -164,6 +164,7 @@ PreparedScene prepare_scene(const SceneArgs& args) {
       scene.point_lights.size(), scene.spot_lights.size(), scene.directional_lights.size());
   if ((args.gltf.time || !args.gltf.animation.empty()) && !p.gltf->animated())
     log::info("{}: nothing is animated; --time and --animation change nothing", args.scene);
+  if (!keep_file) p.gltf->close();
   build_world(p, args);
   if (p.world->lights().empty())
     log::warn("{}: the scene has no lights (the image will be black); light it with --env R,G,B", args.scene);

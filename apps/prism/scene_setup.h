@@ -36,7 +36,8 @@ struct PreparedScene {
 };
 
 // Loads and prepares the scene, logging what it found; fails with a clear message on bad input.
-PreparedScene prepare_scene(const SceneArgs& args);
+// Unless `keep_file` (to re-pose it with pose_scene), the parsed file is freed once loaded.
+PreparedScene prepare_scene(const SceneArgs& args, bool keep_file = false);
 
 // Poses the scene at `seconds` of its animations and rebuilds its world and camera, only when
 // something moved; returns whether it did.

@@ -157,34 +157,48 @@ tinygltf::Model read_gltf(const std::filesystem::path& file) {
 // The parsed file, the scene built from it and the loader that keeps it posed; they refer to
 // each other, so they stay together at one address.
 struct GltfScene::State {
-  tinygltf::Model model;
+  std::unique_ptr<tinygltf::Model> model;
   Scene scene;
-  GltfLoader loader;
+  std::unique_ptr<GltfLoader> loader;
   State(const std::filesystem::path& file, const GltfOptions& options)
-      : model(read_gltf(file)), loader(model, file, options, scene) {
+      : model(std::make_unique<tinygltf::Model>(read_gltf(file))),
+        loader(std::make_unique<GltfLoader>(*model, file, options, scene)) {
     scene.source = file;
+  }
+  const GltfLoader& open() const {
+    if (!loader) fail("{}: internal error: the file was closed", scene.source.string());
+    return *loader;
   }
 };
 
 GltfScene::GltfScene(const std::filesystem::path& file, const GltfOptions& options)
     : state_(std::make_unique<State>(file, options)) {
-  state_->loader.load();
+  state_->loader->load();
 }
 
 GltfScene::~GltfScene() = default;
 
 Scene& GltfScene::scene() { return state_->scene; }
-bool GltfScene::animated() const { return state_->loader.animated(); }
-bool GltfScene::pose(double seconds) { return state_->loader.pose(seconds); }
+bool GltfScene::animated() const { return state_->open().animated(); }
+bool GltfScene::pose(double seconds) {
+  state_->open();
+  return state_->loader->pose(seconds);
+}
+
+void GltfScene::close() {
+  state_->loader.reset();
+  state_->model.reset();
+}
 
 GltfSummary GltfScene::summary() const {
-  const tinygltf::Model& model = state_->model;
+  state_->open();
+  const tinygltf::Model& model = *state_->model;
   GltfSummary s;
   for (const auto& scene : model.scenes) s.scenes.push_back(scene.name);
-  s.scene = state_->loader.scene_index();
+  s.scene = state_->loader->scene_index();
   for (const auto& camera : model.cameras) s.cameras.push_back(camera.name);
   s.variants = material_variants(model);
-  for (const Animation& a : state_->loader.animations())
+  for (const Animation& a : state_->loader->animations())
     s.animations.push_back({a.name, a.start, a.end, a.channels.size()});
   for (const std::string& ext : model.extensionsUsed) {
     const bool required = std::count(model.extensionsRequired.begin(), model.extensionsRequired.end(), ext) > 0;

@@ -57,6 +57,9 @@ class GltfScene {
   bool animated() const;  // the chosen animations have channels
   // Poses the scene at `seconds`; false (and the scene untouched) when nothing moved.
   bool pose(double seconds);
+  // Frees the parsed file (its buffers and encoded images) once no other pose is needed; the
+  // scene stays. Only scene() may be called afterwards.
+  void close();
 
  private:
   struct State;
