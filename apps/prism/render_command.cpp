@@ -82,12 +82,12 @@ void run(const RenderArgs& args) {
   PreparedScene prepared = prepare_scene(scene_args, true);
   if (!prepared.gltf->animated()) log::warn("{}: nothing is animated; every frame is the same image", args.scene.scene);
   const auto t0 = std::chrono::steady_clock::now();
-  for (int frame = range.first; frame <= range.last; ++frame) {
+  for (int64_t frame = range.first; frame <= range.last; ++frame) {
     const double time = frame / args.fps;
     log::info("frame {} ({} of {}) at {:.4f} s", frame, frame - range.first + 1, range.last - range.first + 1, time);
     if (frame > range.first && !pose_scene(prepared, scene_args, time)) log::info("nothing moved: same world");
-    render_image(args, prepared, frame_path(args.output, frame),
-                 args.preview.empty() ? "" : frame_path(args.preview, frame), time);
+    render_image(args, prepared, frame_path(args.output, int(frame)),
+                 args.preview.empty() ? "" : frame_path(args.preview, int(frame)), time);
   }
   log::info("rendered {} frames in {:.1f} s", range.last - range.first + 1, seconds_since(t0));
 }

@@ -166,7 +166,8 @@ int find_animation(const std::vector<Animation>& animations, const std::string& 
                    const std::string& file) {
   for (size_t i = 0; i < animations.size(); ++i)
     if (animations[i].name == name_or_index) return int(i);
-  const bool digits = !name_or_index.empty() && std::all_of(name_or_index.begin(), name_or_index.end(), ::isdigit);
+  const bool digits = !name_or_index.empty() && std::all_of(name_or_index.begin(), name_or_index.end(),
+                                                            [](char c) { return c >= '0' && c <= '9'; });
   if (digits && name_or_index.size() < 9 && size_t(std::stoi(name_or_index)) < animations.size())
     return std::stoi(name_or_index);
   std::string list;
