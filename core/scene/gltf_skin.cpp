@@ -81,7 +81,13 @@ void apply_skin(const SkinWeights& skin, const std::vector<Transform>& joints, M
     m.m[3] = {0, 0, 0, 1};  // affine, whatever the weights' rounding
     mesh.positions[i] = Vec3f(m.point(Vec3d(mesh.positions[i])));
     if (!mesh.normals.empty()) {
-      const Vec3d n = transpose(inverse(m)).vector(Vec3d(mesh.normals[i]));
+      // The inverse transpose of the linear part A is cof(A) / det(A); the cofactor matrix's
+      // columns are a1×a2, a2×a0, a0×a1 for A's columns a_j, and only det's sign matters here.
+      const Vec3d a0(m.m[0][0], m.m[1][0], m.m[2][0]), a1(m.m[0][1], m.m[1][1], m.m[2][1]),
+          a2(m.m[0][2], m.m[1][2], m.m[2][2]);
+      const Vec3d n0(mesh.normals[i]);
+      const Vec3d n = (cross(a1, a2) * n0.x + cross(a2, a0) * n0.y + cross(a0, a1) * n0.z) *
+                      (dot(a0, cross(a1, a2)) < 0 ? -1.0 : 1.0);
       mesh.normals[i] = length(n) > 0 && std::isfinite(length(n)) ? Vec3f(normalize(n)) : Vec3f(0, 0, 0);
     }
     if (!mesh.tangents.empty()) {

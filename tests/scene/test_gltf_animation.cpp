@@ -67,6 +67,7 @@ TEST_CASE("a two-bone skin poses its vertices by joint matrices times inverse bi
   // translation (100, 0, 0) must be ignored; vertex 3 takes its second joint from JOINTS_1.
   test::GltfBuilder b;
   const int pos = b.floats({1, 2, 0, 0, 1, 0, 1, 1, 0, 1, 1, 0}, "VEC3");
+  const int nrm = b.floats({1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0}, "VEC3");
   const int joints0 = b.u16({1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0}, "VEC4");
   const int weights0 = b.floats({1, 0, 0, 0, 0.5f, 0.5f, 0, 0, 0.5f, 0.5f, 0, 0, 0.5f, 0, 0, 0}, "VEC4");
   const int joints1 = b.u16({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
@@ -84,9 +85,9 @@ TEST_CASE("a two-bone skin poses its vertices by joint matrices times inverse bi
     {{"translation": [0, 1, 0], "rotation": [0, 0, 0.70710678118654752, 0.70710678118654752]}}
   ],
   "skins": [{{"joints": [1, 2], "inverseBindMatrices": {}}}],
-  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": {}, "JOINTS_0": {}, "WEIGHTS_0": {},
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": {}, "NORMAL": {}, "JOINTS_0": {}, "WEIGHTS_0": {},
     "JOINTS_1": {}, "WEIGHTS_1": {}}}, "indices": {}}}]}}])",
-                                                     ibm, pos, joints0, weights0, joints1, weights1, indices)));
+                                                     ibm, pos, nrm, joints0, weights0, joints1, weights1, indices)));
   const Scene scene = load_gltf(path);
   REQUIRE(scene.instances.size() == 1);
   CHECK(scene.instances[0].to_world == Transform{});
@@ -95,6 +96,50 @@ TEST_CASE("a two-bone skin poses its vertices by joint matrices times inverse bi
   check_near(world_vertex(scene, 0, 1), {0, 1, 0});      // on the joint: both bones agree
   check_near(world_vertex(scene, 0, 2), {0.5, 1.5, 0});  // half (1, 1, 0), half (0, 2, 0)
   check_near(world_vertex(scene, 0, 3), {0.5, 1.5, 0});  // the same, its bone 1 from JOINTS_1
+  // Normals by the inverse transpose: bone 1 turns +x to +y; the half-half blend ½(I + R) is a
+  // 45° turn scaled by 1/√2, whose inverse transpose turns +x by 45°.
+  const auto& normals = scene.meshes[0].normals;
+  check_near(Vec3d(normals[0]), {0, 1, 0});
+  check_near(Vec3d(normals[1]), {std::sqrt(0.5), std::sqrt(0.5), 0});
+}
+
+TEST_CASE("malformed animations, morph targets and skins fail with a message naming the file") {
+  test::GltfBuilder b;
+  const int pos = b.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+  const int times = b.floats({0, 1}, "SCALAR");
+  const int three = b.floats({0, 0, 0}, "VEC3");
+  const int six = b.floats({0, 0, 0, 1, 1, 1}, "VEC3");
+  const int joints = b.u16({0, 0, 0, 0, 5, 0, 0, 0, 0, 0, 0, 0}, "VEC4");
+  const int weights = b.floats({1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
+  const auto gltf = [&](const std::string& mesh, const std::string& extra) {
+    return b.json(R"("scenes": [{"nodes": [0, 1]}], "nodes": [)" + mesh +
+                  R"(, {}], "meshes": [{"primitives": [{"attributes": {"POSITION": )" + std::to_string(pos) + "}}]}]" +
+                  extra);
+  };
+  const auto animation = [&](int output, const std::string& interpolation, const std::string& path) {
+    return fmt::format(R"(, "animations": [{{"samplers": [{{"input": {}, "output": {}, "interpolation": "{}"}}],
+      "channels": [{{"sampler": 0, "target": {{"node": 0, "path": "{}"}}}}]}}])",
+                       times, output, interpolation, path);
+  };
+  const auto fails = [&](const std::string& name, const std::string& json, const std::string& message) {
+    INFO(name);
+    GltfOptions options;
+    options.time = 0.5;
+    CHECK_THROWS_WITH(load_gltf(write(name, json), options),
+                      Catch::Contains(name + ".gltf") && Catch::Contains(message));
+  };
+  fails("keys", gltf(R"({"mesh": 0})", animation(three, "LINEAR", "translation")), "3 values for 2 keys of 3 each");
+  fails("cubic", gltf(R"({"mesh": 0})", animation(six, "CUBICSPLINE", "translation")), "6 values for 2 keys of 9 each");
+  fails("interpolation", gltf(R"({"mesh": 0})", animation(six, "SMOOTH", "translation")),
+        "unknown interpolation 'SMOOTH'");
+  fails("weights", gltf(R"({"mesh": 0})", animation(six, "LINEAR", "weights")), "node without morph targets");
+  fails("skin", gltf(R"({"mesh": 0, "skin": 3})", ""), "skin 3");
+  // A vertex naming joint 5 of a one-joint skin.
+  std::string skinned = gltf(R"({"mesh": 0, "skin": 0})", R"(, "skins": [{"joints": [1]}])");
+  const std::string attributes = "\"POSITION\": " + std::to_string(pos);
+  skinned.replace(skinned.find(attributes), attributes.size(),
+                  attributes + fmt::format(R"(, "JOINTS_0": {}, "WEIGHTS_0": {})", joints, weights));
+  fails("joint", skinned, "vertex 1 names joint 5 of a skin with 1");
 }
 
 namespace {
