@@ -2,8 +2,8 @@
 // The glTF importer's inside, shared by its files (not a public header):
 //   gltf_loader.cpp     reading the file, the extensions Prism honours, the import's order
 //   gltf_materials.cpp  materials, textures and images
-//   gltf_meshes.cpp     primitives to triangle meshes
-//   gltf_nodes.cpp      the node hierarchy: instances, cameras, punctual lights, deformed meshes
+//   gltf_meshes.cpp     primitives to triangle meshes; each node's copy of a mesh that deforms
+//   gltf_nodes.cpp      the node hierarchy: instances, cameras, punctual lights
 //   gltf_animation.cpp  node poses and animation channels
 //   gltf_morph.cpp, gltf_skin.cpp, gltf_variants.cpp  morph targets, skins, material variants
 
@@ -78,7 +78,7 @@ class GltfLoader {
   std::optional<Mesh> convert_primitive(const tinygltf::Primitive& prim, const std::string& context);
 
   // A primitive whose vertices move: its base attributes, morph targets and skin weights,
-  // read once (gltf_nodes.cpp).
+  // read once.
   struct Deformable {
     Mesh base;
     std::vector<MorphTarget> targets;

@@ -139,6 +139,8 @@ void GltfLoader::warn_once(const std::string& message) {
   if (warned_.insert(message).second) log::warn("{}: {}", file_, message);
 }
 
+namespace {
+
 tinygltf::Model read_gltf(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file)) fail("{}: no such file", file.string());
   tinygltf::TinyGLTF reader;
@@ -153,6 +155,8 @@ tinygltf::Model read_gltf(const std::filesystem::path& file) {
   }
   return model;
 }
+
+}  // namespace
 
 // The parsed file, the scene built from it and the loader that keeps it posed; they refer to
 // each other, so they stay together at one address.
