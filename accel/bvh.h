@@ -133,7 +133,7 @@ bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&
       const BvhNode& node = nodes_[ref];
       const char* planes = reinterpret_cast<const char*>(node.planes);
       const auto slab = [&](size_t offset, int a, const f8& inv) {
-        return (simd::load<f8>(reinterpret_cast<const float*>(planes + offset)) - ray.o[a]) * inv;
+        return (simd::load(reinterpret_cast<const float*>(planes + offset)) - ray.o[a]) * inv;
       };
       const f8 t_enter =
           simd::max_ignore_nan(slab(ray.near[0], 0, ray.inv_near[0]),

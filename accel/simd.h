@@ -3,7 +3,6 @@
 // like their scalar formulas and compile to SSE, AVX or AVX-512 code for whatever -march allows.
 
 #include <cstdint>
-#include <cstring>
 
 #if defined(__SSE__)
 #include <immintrin.h>
@@ -15,13 +14,12 @@ using f4 = float __attribute__((vector_size(16)));
 using i4 = int32_t __attribute__((vector_size(16)));
 using f8 = float __attribute__((vector_size(32)));
 using i8 = int32_t __attribute__((vector_size(32)));
-using d8 = double __attribute__((vector_size(64)));
 
-template <typename V>
-V load(const float* p) {
-  V v;
-  std::memcpy(&v, p, sizeof v);  // no alignment assumed; compiles to one (unaligned) load
-  return v;
+// Eight floats from memory, no alignment assumed: one (unaligned) load through a type that may
+// alias float. (A memcpy into an f8 made GCC 12 store and reload the vector through the stack.)
+inline f8 load(const float* p) {
+  using f8u = float __attribute__((vector_size(32), aligned(4), may_alias));
+  return *reinterpret_cast<const f8u*>(p);
 }
 
 // The lane-wise minimum and maximum that ignore a NaN in their first argument: (p − o)/d is NaN

@@ -7,6 +7,7 @@
 // One implementation, eight triangles at a time: the BVH's leaves store triangles in blocks.
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -66,7 +67,7 @@ struct BlockHits {
 };
 
 inline BlockHits intersect_triangles(const WatertightRay& r, const TriangleBlock& tri, float tmax) {
-  using simd::f8, simd::i8, simd::d8;
+  using simd::f8, simd::i8;
   // Vertices relative to the origin, in the permuted axes.
   const f8 ox = f8{} + r.o[r.kx], oy = f8{} + r.o[r.ky], oz = f8{} + r.o[r.kz];
   const f8 a_x = tri.v[0][r.kx] - ox, a_y = tri.v[0][r.ky] - oy, a_z = tri.v[0][r.kz] - oz;
@@ -82,14 +83,13 @@ inline BlockHits intersect_triangles(const WatertightRay& r, const TriangleBlock
   f8 v = ax * cy - ay * cx;
   f8 w = bx * ay - by * ax;
   const i8 on_edge = (u == 0.f) | (v == 0.f) | (w == 0.f);
-  if (simd::bits(on_edge)) {  // exactly on an edge in float: decide in double
-    const auto dbl = [](f8 x) { return __builtin_convertvector(x, d8); };
-    const f8 ud = __builtin_convertvector(dbl(cx) * dbl(by) - dbl(cy) * dbl(bx), f8);
-    const f8 vd = __builtin_convertvector(dbl(ax) * dbl(cy) - dbl(ay) * dbl(cx), f8);
-    const f8 wd = __builtin_convertvector(dbl(bx) * dbl(ay) - dbl(by) * dbl(ax), f8);
-    u = on_edge ? ud : u;
-    v = on_edge ? vd : v;
-    w = on_edge ? wd : w;
+  // Exactly on an edge in float (rare): decide in double, where the products are exact.
+  for (uint32_t edge = simd::bits(on_edge); edge; edge &= edge - 1) {
+    const int i = std::countr_zero(edge);
+    const auto edge_function = [](double px, double py, double qx, double qy) { return float(px * qy - py * qx); };
+    u[i] = edge_function(cx[i], cy[i], bx[i], by[i]);
+    v[i] = edge_function(ax[i], ay[i], cx[i], cy[i]);
+    w[i] = edge_function(bx[i], by[i], ax[i], ay[i]);
   }
   const i8 outside = ((u < 0.f) | (v < 0.f) | (w < 0.f)) & ((u > 0.f) | (v > 0.f) | (w > 0.f));
   const f8 det = u + v + w;
