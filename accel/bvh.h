@@ -64,9 +64,9 @@ struct BvhRay {
     constexpr float kDown = 1.f - 2.f * gamma(5), kUp = 1.f + 2.f * gamma(5);
     for (int a = 0; a < 3; ++a) {
       const float inv = 1.f / ray.d[a];
-      o[a] = simd::f8{} + ray.o[a];
-      inv_near[a] = simd::f8{} + inv * kDown;
-      inv_far[a] = simd::f8{} + inv * kUp;
+      o[a] = simd::broadcast(ray.o[a]);
+      inv_near[a] = simd::broadcast(inv * kDown);
+      inv_far[a] = simd::broadcast(inv * kUp);
       near[a] = (std::signbit(inv) ? a + 3 : a) * sizeof(BvhNode::planes[0]);
       far[a] = (std::signbit(inv) ? a : a + 3) * sizeof(BvhNode::planes[0]);
     }
@@ -142,7 +142,7 @@ bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&
       const f8 t_leave = simd::min_ignore_nan(
           slab(ray.far[0], 0, ray.inv_far[0]),
           simd::min_ignore_nan(slab(ray.far[1], 1, ray.inv_far[1]),
-                               simd::min_ignore_nan(slab(ray.far[2], 2, ray.inv_far[2]), f8{} + tmax)));
+                               simd::min_ignore_nan(slab(ray.far[2], 2, ray.inv_far[2]), simd::broadcast(tmax))));
       uint32_t mask = simd::bits(t_enter <= t_leave);
       if (mask) {
         int i = std::countr_zero(mask);

@@ -22,6 +22,9 @@ inline f8 load(const float* p) {
   return *reinterpret_cast<const f8u*>(p);
 }
 
+// x in every lane. (f8{} + x would cost an addition: 0 + x is not x when x is −0.)
+inline f8 broadcast(float x) { return f8{x, x, x, x, x, x, x, x}; }
+
 // The lane-wise minimum and maximum that ignore a NaN in their first argument: (p − o)/d is NaN
 // when a ray lies in a slab's plane, and such a slab must not limit the interval.
 template <typename V>

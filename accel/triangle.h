@@ -46,7 +46,7 @@ struct alignas(32) TriangleBlock {
 
   TriangleBlock() {
     for (auto& vertex : v)
-      for (auto& axis : vertex) axis = simd::f8{} + std::numeric_limits<float>::quiet_NaN();
+      for (auto& axis : vertex) axis = simd::broadcast(std::numeric_limits<float>::quiet_NaN());
     for (uint32_t& i : id) i = 0;
   }
   void set(int lane, const Vec3f& v0, const Vec3f& v1, const Vec3f& v2, uint32_t triangle_id) {
@@ -69,7 +69,7 @@ struct BlockHits {
 inline BlockHits intersect_triangles(const WatertightRay& r, const TriangleBlock& tri, float tmax) {
   using simd::f8, simd::i8;
   // Vertices relative to the origin, in the permuted axes.
-  const f8 ox = f8{} + r.o[r.kx], oy = f8{} + r.o[r.ky], oz = f8{} + r.o[r.kz];
+  const f8 ox = simd::broadcast(r.o[r.kx]), oy = simd::broadcast(r.o[r.ky]), oz = simd::broadcast(r.o[r.kz]);
   const f8 a_x = tri.v[0][r.kx] - ox, a_y = tri.v[0][r.ky] - oy, a_z = tri.v[0][r.kz] - oz;
   const f8 b_x = tri.v[1][r.kx] - ox, b_y = tri.v[1][r.ky] - oy, b_z = tri.v[1][r.kz] - oz;
   const f8 c_x = tri.v[2][r.kx] - ox, c_y = tri.v[2][r.ky] - oy, c_z = tri.v[2][r.kz] - oz;
