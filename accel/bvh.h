@@ -9,7 +9,6 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <span>
 #include <utility>
 #include <vector>
@@ -92,7 +91,7 @@ class Bvh {
   // and returns whether it hit. Boxes entered beyond tmax are skipped; with AnyHit, returns at
   // the first hit. `blocks` (the leaves' blocks) is only prefetched.
   template <bool AnyHit, typename Block, typename Leaf, typename Solo>
-  bool traverse(const BvhRay& ray, float& tmax, const Block* blocks, Leaf&& leaf, Solo&& solo) const;
+  bool traverse(const Ray& ray, float& tmax, const Block* blocks, Leaf&& leaf, Solo&& solo) const;
 
  private:
   friend class BvhBuilder;
@@ -106,10 +105,10 @@ class Bvh {
 };
 
 template <bool AnyHit, typename Block, typename Leaf, typename Solo>
-bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&& leaf, Solo&& solo) const {
+bool Bvh::traverse(const Ray& r, float& tmax, const Block* blocks, Leaf&& leaf, Solo&& solo) const {
   using simd::f8;
   if (root_ == kNoRoot) return false;
-  const BvhRay ray = ray_in;  // a local copy the compiler can keep in registers
+  const BvhRay ray(r);  // built here, so the compiler keeps it in registers
   const auto prefetch = [](const void* p, size_t bytes) {
     for (size_t offset = 0; offset < bytes; offset += 64) __builtin_prefetch(static_cast<const char*>(p) + offset);
     __builtin_prefetch(static_cast<const char*>(p) + bytes - 1);
@@ -164,7 +163,7 @@ bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&
           continue;
         }
         alignas(32) float t[8];
-        std::memcpy(t, &t_enter, sizeof t);
+        simd::store(t, t_enter);
         mask &= mask - 1;
         int j = std::countr_zero(mask);
         mask &= mask - 1;

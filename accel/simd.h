@@ -15,12 +15,11 @@ using i4 = int32_t __attribute__((vector_size(16)));
 using f8 = float __attribute__((vector_size(32)));
 using i8 = int32_t __attribute__((vector_size(32)));
 
-// Eight floats from memory, no alignment assumed: one (unaligned) load through a type that may
-// alias float. (A memcpy into an f8 made GCC 12 store and reload the vector through the stack.)
-inline f8 load(const float* p) {
-  using f8u = float __attribute__((vector_size(32), aligned(4), may_alias));
-  return *reinterpret_cast<const f8u*>(p);
-}
+// Eight floats from or to memory, no alignment assumed: one (unaligned) move through a type that
+// may alias float. (A memcpy made GCC 12 copy the vector through the stack once more.)
+using f8_unaligned = float __attribute__((vector_size(32), aligned(4), may_alias));
+inline f8 load(const float* p) { return *reinterpret_cast<const f8_unaligned*>(p); }
+inline void store(float* p, f8 v) { *reinterpret_cast<f8_unaligned*>(p) = v; }
 
 // x in every lane. (f8{} + x would cost an addition: 0 + x is not x when x is −0.)
 inline f8 broadcast(float x) { return f8{x, x, x, x, x, x, x, x}; }
