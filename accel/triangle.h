@@ -18,11 +18,11 @@ namespace prism {
 
 // Per-ray constants of the watertight test, computed once per traversal.
 struct WatertightRay {
-  Vec3f o;
   int kx, ky, kz;
+  float ox, oy, oz;  // the origin in the permuted axes
   float sx, sy, sz;
 
-  explicit WatertightRay(const Ray& ray) : o(ray.o) {
+  explicit WatertightRay(const Ray& ray) {
     kz = max_dimension(abs(ray.d));
     kx = kz == 2 ? 0 : kz + 1;
     ky = kx == 2 ? 0 : kx + 1;
@@ -30,6 +30,7 @@ struct WatertightRay {
     sx = ray.d[kx] / ray.d[kz];
     sy = ray.d[ky] / ray.d[kz];
     sz = 1.f / ray.d[kz];
+    ox = ray.o[kx], oy = ray.o[ky], oz = ray.o[kz];
   }
 };
 
@@ -66,10 +67,25 @@ struct BlockHits {
   TriangleHit lane(int i) const { return {t[i], u[i] * inv_det[i], v[i] * inv_det[i], w[i] * inv_det[i]}; }
 };
 
+// The edge functions of the lanes in `lanes` recomputed in double, where the products are exact:
+// for rays exactly on an edge in float (rare). Out of line, so that the common path stays small.
+[[gnu::cold, gnu::noinline]] inline void exact_edge_functions(uint32_t lanes, const simd::f8& ax, const simd::f8& ay,
+                                                              const simd::f8& bx, const simd::f8& by,
+                                                              const simd::f8& cx, const simd::f8& cy, simd::f8& u,
+                                                              simd::f8& v, simd::f8& w) {
+  const auto edge_function = [](double px, double py, double qx, double qy) { return float(px * qy - py * qx); };
+  for (; lanes; lanes &= lanes - 1) {
+    const int i = std::countr_zero(lanes);
+    u[i] = edge_function(cx[i], cy[i], bx[i], by[i]);
+    v[i] = edge_function(ax[i], ay[i], cx[i], cy[i]);
+    w[i] = edge_function(bx[i], by[i], ax[i], ay[i]);
+  }
+}
+
 inline BlockHits intersect_triangles(const WatertightRay& r, const TriangleBlock& tri, float tmax) {
   using simd::f8, simd::i8;
   // Vertices relative to the origin, in the permuted axes.
-  const f8 ox = simd::broadcast(r.o[r.kx]), oy = simd::broadcast(r.o[r.ky]), oz = simd::broadcast(r.o[r.kz]);
+  const f8 ox = simd::broadcast(r.ox), oy = simd::broadcast(r.oy), oz = simd::broadcast(r.oz);
   const f8 a_x = tri.v[0][r.kx] - ox, a_y = tri.v[0][r.ky] - oy, a_z = tri.v[0][r.kz] - oz;
   const f8 b_x = tri.v[1][r.kx] - ox, b_y = tri.v[1][r.ky] - oy, b_z = tri.v[1][r.kz] - oz;
   const f8 c_x = tri.v[2][r.kx] - ox, c_y = tri.v[2][r.ky] - oy, c_z = tri.v[2][r.kz] - oz;
@@ -83,14 +99,7 @@ inline BlockHits intersect_triangles(const WatertightRay& r, const TriangleBlock
   f8 v = ax * cy - ay * cx;
   f8 w = bx * ay - by * ax;
   const i8 on_edge = (u == 0.f) | (v == 0.f) | (w == 0.f);
-  // Exactly on an edge in float (rare): decide in double, where the products are exact.
-  for (uint32_t edge = simd::bits(on_edge); edge; edge &= edge - 1) {
-    const int i = std::countr_zero(edge);
-    const auto edge_function = [](double px, double py, double qx, double qy) { return float(px * qy - py * qx); };
-    u[i] = edge_function(cx[i], cy[i], bx[i], by[i]);
-    v[i] = edge_function(ax[i], ay[i], cx[i], cy[i]);
-    w[i] = edge_function(bx[i], by[i], ax[i], ay[i]);
-  }
+  if (const uint32_t edge = simd::bits(on_edge)) exact_edge_functions(edge, ax, ay, bx, by, cx, cy, u, v, w);
   const i8 outside = ((u < 0.f) | (v < 0.f) | (w < 0.f)) & ((u > 0.f) | (v > 0.f) | (w > 0.f));
   const f8 det = u + v + w;
 
