@@ -2,12 +2,14 @@
 // a scene-referred OpenEXR image (with AOV layers and spectral bins on request, and optionally an
 // sRGB preview PNG), printing the render statistics and the image's estimated error. Stops early
 // on --time-limit or a first SIGINT/SIGTERM (writing what it has), keeps a checkpoint to
-// --resume from, and aborts without output on a second signal.
+// --resume from, and aborts without output on a second signal. With `--frames A:B` it renders the
+// animation's frames A to B, loading the file once.
 
 #include <chrono>
 #include <sstream>
 
 #include "apps/prism/commands.h"
+#include "apps/prism/frame_sequence.h"
 #include "apps/prism/scene_setup.h"
 #include "base/clock.h"
 #include "base/error.h"
@@ -26,6 +28,8 @@ struct RenderArgs {
   std::string output, preview, colorspace = ColorPipeline::kDefaultOutput, aovs, spectral_bins;
   bool half = false, quiet = false, verbose = false, resume = false;
   double checkpoint = 0;
+  std::string frames;  // "A:B"
+  double fps = 24;
   RenderOptions options;
 };
 
@@ -48,14 +52,16 @@ uint32_t parse_aovs(const std::string& text) {
 }
 
 // Everything that shapes the image but the sample count: a checkpoint resumes only with these.
-std::string fingerprint(const RenderArgs& args, const Camera& camera, const RenderOptions& o) {
+std::string fingerprint(const RenderArgs& args, const Camera& camera, const RenderOptions& o,
+                        std::optional<double> time) {
   const SceneArgs& s = args.scene;
   return fmt::format(
-      "scene={} env={} env-map={} env-rotate={} env-scale={} camera={} size={}x{} integrator={} seed={} sampler={} "
-      "wavelengths={} max-depth={} light-sampling={} noise-threshold={} aovs={} spectral-bins={}",
-      std::filesystem::absolute(s.scene).string(), s.env, s.env_map, s.env_rotate, s.env_scale, s.camera,
-      camera.width(), camera.height(), integrator_name(o.integrator), o.seed, sampler_name(o.sampler), o.wavelengths,
-      o.path.max_depth, o.path.next_event ? "mis" : "bsdf", o.noise_threshold, o.aovs, o.spectral_bins.to_string());
+      "scene={} time={} env={} env-map={} env-rotate={} env-scale={} camera={} size={}x{} integrator={} seed={} "
+      "sampler={} wavelengths={} max-depth={} light-sampling={} noise-threshold={} aovs={} spectral-bins={}",
+      std::filesystem::absolute(s.scene).string(), time ? fmt::format("{}", *time) : "-", s.env, s.env_map,
+      s.env_rotate, s.env_scale, s.camera, camera.width(), camera.height(), integrator_name(o.integrator), o.seed,
+      sampler_name(o.sampler), o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf", o.noise_threshold,
+      o.aovs, o.spectral_bins.to_string());
 }
 
 // The image's error as the log and the header state it.
@@ -117,21 +123,19 @@ SampleCounts sample_counts(const Film& film) {
   return c;
 }
 
-void run(const RenderArgs& args) {
-  if (args.quiet) log::set_level(log::Level::warn);
-  if (args.verbose) log::set_level(log::Level::verbose);
-  interrupt::install();
+// Renders the prepared scene to `output` (and `preview`); `time` is the animation time posed.
+// Returns false if a signal interrupted it.
+bool render_image(const RenderArgs& args, const PreparedScene& prepared, const std::string& output,
+                  const std::string& preview, std::optional<double> time) {
   const std::string colorspace = ColorPipeline::standard().canonical_name(args.colorspace);
   const Chromaticities chromaticities = ColorPipeline::standard().chromaticities(colorspace);
   RenderOptions options = args.options;
   options.progress = !args.quiet;
   options.aovs = parse_aovs(args.aovs);
   if (!args.spectral_bins.empty()) options.spectral_bins = SpectralBins::parse(args.spectral_bins);
-  const std::filesystem::path checkpoint = args.output + ".checkpoint";
-
-  const PreparedScene prepared = prepare_scene(args.scene);
+  const std::filesystem::path checkpoint = output + ".checkpoint";
   const Camera& camera = *prepared.camera;
-  const std::string print = fingerprint(args, camera, options);
+  const std::string print = fingerprint(args, camera, options, time);
   std::optional<RenderState> resume;
   if (args.resume) {
     resume = load_checkpoint(checkpoint, print);
@@ -185,23 +189,24 @@ void run(const RenderArgs& args) {
   };
   if (options.noise_threshold > 0) image.metadata.push_back({"prism.noiseThreshold", options.noise_threshold});
   if (options.time_limit > 0) image.metadata.push_back({"prism.timeLimit", options.time_limit});
+  if (time) image.metadata.push_back({"prism.time", *time});
   if (options.spectral_bins.count() > 0) {
     image.metadata.push_back({"spectralLayoutVersion", std::string("1.0")});
     image.metadata.push_back({"emissiveUnits", std::string("W.m^-2.sr^-1")});
   }
   // A second signal from here on removes what this run wrote, as it would have before.
   std::vector<std::unique_ptr<interrupt::RemoveOnAbort>> written;
-  write_exr(args.output, image, args.half);
-  written.push_back(std::make_unique<interrupt::RemoveOnAbort>(args.output));
-  std::printf("wrote %s (%dx%d, %s)\n", args.output.c_str(), film.width(), film.height(), colorspace.c_str());
+  write_exr(output, image, args.half);
+  written.push_back(std::make_unique<interrupt::RemoveOnAbort>(output));
+  std::printf("wrote %s (%dx%d, %s)\n", output.c_str(), film.width(), film.height(), colorspace.c_str());
 
-  if (!args.preview.empty()) {
+  if (!preview.empty()) {
     std::vector<float> display = film.xyz_image();
     ColorPipeline::standard().xyz_to_display(ColorPipeline::kDefaultDisplay, ColorPipeline::kDefaultView,
                                              display.data(), display.size() / 3);
-    write_png(args.preview, film.width(), film.height(), display);
-    written.push_back(std::make_unique<interrupt::RemoveOnAbort>(args.preview));
-    std::printf("wrote %s (preview, %s / %s)\n", args.preview.c_str(), ColorPipeline::kDefaultDisplay,
+    write_png(preview, film.width(), film.height(), display);
+    written.push_back(std::make_unique<interrupt::RemoveOnAbort>(preview));
+    std::printf("wrote %s (preview, %s / %s)\n", preview.c_str(), ColorPipeline::kDefaultDisplay,
                 ColorPipeline::kDefaultView);
   }
   if (args.checkpoint > 0 && !complete) {
@@ -212,6 +217,36 @@ void run(const RenderArgs& args) {
     std::filesystem::remove(checkpoint, ec);  // the render is done: nothing to resume
   }
   written.clear();
+  return !result.interrupted;
+}
+
+void run(const RenderArgs& args) {
+  if (args.quiet) log::set_level(log::Level::warn);
+  if (args.verbose) log::set_level(log::Level::verbose);
+  interrupt::install();
+  ColorPipeline::standard().canonical_name(args.colorspace);  // a bad name fails before any work
+  if (args.frames.empty()) {
+    render_image(args, prepare_scene(args.scene), args.output, args.preview, args.scene.gltf.time);
+    return;
+  }
+  const FrameRange range = parse_frames(args.frames);
+  if (!(args.fps > 0 && std::isfinite(args.fps))) fail("--fps {}: must be a positive number", args.fps);
+  SceneArgs scene_args = args.scene;
+  scene_args.gltf.time = range.first / args.fps;
+  PreparedScene prepared = prepare_scene(scene_args, true);
+  if (!prepared.gltf->animated()) log::warn("{}: nothing is animated; every frame is the same image", args.scene.scene);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int64_t frame = range.first; frame <= range.last; ++frame) {
+    const double time = frame / args.fps;
+    log::info("frame {} ({} of {}) at {:.4f} s", frame, frame - range.first + 1, range.last - range.first + 1, time);
+    if (frame > range.first && !pose_scene(prepared, scene_args, time)) log::info("nothing moved: same world");
+    if (!render_image(args, prepared, frame_path(args.output, int(frame)),
+                      args.preview.empty() ? "" : frame_path(args.preview, int(frame)), time)) {
+      log::warn("interrupted: frames after {} not rendered", frame);
+      return;
+    }
+  }
+  log::info("rendered {} frames in {:.1f} s", range.last - range.first + 1, seconds_since(t0));
 }
 
 }  // namespace
@@ -220,7 +255,13 @@ void add_render_command(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a glTF 2.0 scene to a scene-referred OpenEXR image");
   add_scene_options(cmd, args->scene);
-  cmd->add_option("-o,--output", args->output, "Output OpenEXR file")->required();
+  cmd->add_option("-o,--output", args->output,
+                  "Output OpenEXR file (with --frames: a #### pattern for the frame number)")
+      ->required();
+  cmd->add_option("--frames", args->frames,
+                  "Render the animation's frames A to B (A:B) at --fps, loading the file once")
+      ->excludes("--time");
+  cmd->add_option("--fps", args->fps, "Frames per second of --frames: frame N is at N / fps seconds")->default_val(24);
   add_render_options(cmd, args->options);
   cmd->add_option("--noise-threshold", args->options.noise_threshold,
                   "Adaptive sampling: a pixel stops when its estimated error is below T (README); --spp is then "
