@@ -33,7 +33,7 @@ struct DeltaLobe {
 
 template <int N>
 struct DeltaLobes {
-  std::array<DeltaLobe<N>, 3> lobes;
+  std::array<DeltaLobe<N>, 4> lobes;  // a coat, a metal, a dielectric's reflection and transmission
   int count = 0;
 
   void add(const DeltaLobe<N>& l) {

@@ -1,10 +1,16 @@
 #pragma once
 // glTF's metallic-roughness model, physically (glTF 2.0 Appendix B; KHR_materials_transmission):
-//   f = m · f_metal + (1 − m) · [ f_dielectric + (1 − t) · f_diffuse ]
-// m = metallic, t = transmission; f_metal a conductor, f_dielectric the dielectric interface
-// (its reflection, and its transmission weighted by t), f_diffuse the Lambertian base under the
-// specular layer, coupled to it so that the whole stays energy-consistent and reciprocal:
+//   f = m · f_metal + (1 − m) · [ f_dielectric + (1 − t) · ((1 − d) f_diffuse + d f_diffuse_t) ]
+// m = metallic, t = transmission, d = diffuse transmission; f_metal a conductor, f_dielectric the
+// dielectric interface (its reflection, and its transmission weighted by t), f_diffuse the
+// Lambertian base under the specular layer, coupled to it so that the whole stays
+// energy-consistent and reciprocal:
 //   f_diffuse = ρ/π · (1 − E(μ_o)) (1 − E(μ_i)) / (1 − E_avg)      (see SpecularAlbedo)
+// and f_diffuse_t the same with the diffuse-transmission colour, for wi on the far side
+// (KHR_materials_diffuse_transmission: a thin wall, light leaves the other face diffusely).
+// E is the albedo of the dielectric's lobe for the index `coupling_eta`: the dielectric's own,
+// or, when a specular colour or a thin film raise the reflectance of some lanes, the index that
+// bounds them (so that no lane's albedo exceeds 1; the diffuse is then slightly conservative).
 // Sampled by choosing a lobe with probability ∝ its albedo seen from wo, then sampling it; f and
 // pdf of non-delta directions are those of the whole mixture (for MIS). Without transmission
 // the surface is opaque and two-sided: seen from behind, it is the same as from the front.
@@ -15,6 +21,8 @@
 #include "base/warp.h"
 #include "materials/conductor_bsdf.h"
 #include "materials/dielectric_bsdf.h"
+#include "materials/sheen_albedo.h"
+#include "materials/sheen_bsdf.h"
 #include "materials/specular_albedo.h"
 
 namespace prism {
@@ -22,18 +30,22 @@ namespace prism {
 template <int N>
 class PbrBsdf {
  public:
-  // alpha, eta and specular must be those of `dielectric` (they pick its albedo E).
+  // alpha and specular must be those of `dielectric`, coupling_eta its index or one that bounds
+  // its reflectance (they pick its albedo E).
   PbrBsdf(float metallic, const ConductorBsdf<N>& metal, const DielectricBsdf<N>& dielectric, float transmission,
-          const SampledSpectrum<N>& albedo, float alpha, float eta, float specular)
+          const SampledSpectrum<N>& albedo, float alpha, float coupling_eta, float specular,
+          float diffuse_transmission = 0, const SampledSpectrum<N>& diffuse_transmission_color = {})
       : metallic_(metallic),
         transmission_(transmission),
         metal_(metal),
         dielectric_(dielectric),
         albedo_(albedo),
         alpha_(alpha),
-        eta_(eta),
+        eta_(coupling_eta),
         specular_(specular),
-        e_avg_(specular * SpecularAlbedo::table().average(alpha, eta)) {}
+        e_avg_(specular * SpecularAlbedo::table().average(alpha, coupling_eta)),
+        diffuse_transmission_(diffuse_transmission),
+        transmitted_albedo_(diffuse_transmission_color) {}
 
   bool is_specular() const {
     return (metallic_ == 0 || metal_.is_specular()) && dielectric_.is_specular() && diffuse_weight() == 0;
@@ -50,7 +62,11 @@ class PbrBsdf {
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
     if (flips(wo)) return f(-wo, -wi);
     SampledSpectrum<N> r = metal_.f(wo, wi) * metallic_ + dielectric_.f(wo, wi) * (1 - metallic_);
-    if (diffuse_weight() > 0 && same_hemisphere(wo, wi)) r += albedo_ * (diffuse_weight() * coupling(wo, wi) * kInvPi);
+    if (diffuse_weight() <= 0) return r;
+    if (same_hemisphere(wo, wi))
+      r += albedo_ * (diffuse_weight() * (1 - diffuse_transmission_) * coupling(wo, wi) * kInvPi);
+    else if (diffuse_transmission_ > 0)
+      r += transmitted_albedo_ * (diffuse_weight() * diffuse_transmission_ * coupling(wo, wi) * kInvPi);
     return r;
   }
 
@@ -73,10 +89,11 @@ class PbrBsdf {
     } else if (uc < p[0] + p[1]) {
       s = dielectric_.sample_f(wo, std::min((uc - p[0]) / p[1], 0.99999994f), u);
       if (s && s->specular) return scaled(*s, 1 - metallic_, p[1]);
-    } else {
+    } else {  // the diffuse base: reflected (p[2]) or transmitted to the far side (p[3])
+      const bool far_side = uc >= 1 - p[3];
       Vec3f wi = sample_cosine_hemisphere(u);
-      if (wo.z < 0) wi.z = -wi.z;
-      s = BsdfSample<N>{{}, wi, 0.f};
+      if ((wo.z < 0) != far_side) wi.z = -wi.z;
+      s = BsdfSample<N>{{}, wi, 0.f, false, far_side};
     }
     if (!s) return std::nullopt;
     s->f = f(wo, s->wi);
@@ -99,21 +116,21 @@ class PbrBsdf {
     return e_avg_ < 1 ? (1 - E(wo.z)) * (1 - E(wi.z)) / (1 - e_avg_) : 0.f;
   }
 
-  // Probabilities of sampling the metal, the dielectric interface and the diffuse base: each
-  // lobe's share of the light reflected towards wo.
   // Σ (probability of lobe) × (its pdf), for the probabilities of wo (not flipped).
-  float mixture_pdf(const Vec3f& wo, const Vec3f& wi, const std::array<float, 3>& p) const {
-    float r = p[0] * metal_.pdf(wo, wi) + p[1] * dielectric_.pdf(wo, wi);
-    if (same_hemisphere(wo, wi)) r += p[2] * cosine_hemisphere_pdf(abs_cos_theta(wi));
-    return r;
+  float mixture_pdf(const Vec3f& wo, const Vec3f& wi, const std::array<float, 4>& p) const {
+    const float r = p[0] * metal_.pdf(wo, wi) + p[1] * dielectric_.pdf(wo, wi);
+    return r + p[same_hemisphere(wo, wi) ? 2 : 3] * cosine_hemisphere_pdf(abs_cos_theta(wi));
   }
 
-  std::array<float, 3> lobe_probabilities(const Vec3f& wo) const {
-    const float e = E(wo.z);
-    std::array<float, 3> w = {metallic_, (1 - metallic_) * (e + transmission_ * (1 - e)),
-                              diffuse_weight() * (1 - e) * std::max(albedo_.average(), 0.f)};
-    const float sum = w[0] + w[1] + w[2];
-    if (!(sum > 0)) return {0, 1, 0};
+  // Probabilities of sampling the metal, the dielectric interface, the diffuse base and its
+  // transmission: each lobe's share of the light scattered towards wo.
+  std::array<float, 4> lobe_probabilities(const Vec3f& wo) const {
+    const float e = E(wo.z), diffuse = diffuse_weight() * (1 - e);
+    std::array<float, 4> w = {metallic_, (1 - metallic_) * (e + transmission_ * (1 - e)),
+                              diffuse * (1 - diffuse_transmission_) * std::max(albedo_.average(), 0.f),
+                              diffuse * diffuse_transmission_ * std::max(transmitted_albedo_.average(), 0.f)};
+    const float sum = w[0] + w[1] + w[2] + w[3];
+    if (!(sum > 0)) return {0, 1, 0, 0};
     for (float& x : w) x /= sum;
     return w;
   }
@@ -130,6 +147,132 @@ class PbrBsdf {
   DielectricBsdf<N> dielectric_;
   SampledSpectrum<N> albedo_;
   float alpha_, eta_, specular_, e_avg_;
+  float diffuse_transmission_;
+  SampledSpectrum<N> transmitted_albedo_;
+};
+
+// The glTF base under its top layers, KHR_materials_sheen and KHR_materials_clearcoat, each
+// layered by albedo scaling (Kulla & Conty 2017; Estevez & Kulla 2017 §3): a layer lets through
+// what its own lobe does not reflect, 1 − w·E(μ), w its weight, E its directional albedo.
+//   f = c f_coat + T_c(μ_o) T_c(μ_i) [ f_sheen + S(μ_o, μ_i) f_base ]
+//   T_c(μ) = 1 − c E_coat(μ)                     the coat (index 1.5, GGX) crossed on the way in and out
+//   S = min(1 − s E_sheen(μ_o), 1 − s E_sheen(μ_i))   KHR_materials_sheen's scaling, s = max of the colour
+// c = clearcoat factor. Each factor is ≤ 1 − (that layer's albedo towards wo), so the albedo
+// never exceeds 1; all are symmetric in wo and wi, so the whole is reciprocal. Light the coat
+// reflects back down is not followed (as in the extension). Sampled by choosing the coat, the
+// sheen or the base with probability ∝ its share towards wo; f and pdf are the mixture's.
+template <int N>
+class LayeredBsdf {
+ public:
+  struct Coat {
+    float weight, alpha, eta;  // clearcoat factor, GGX α, index relative to the front medium
+  };
+  struct Sheen {
+    SampledSpectrum<N> color;
+    float alpha;
+  };
+
+  LayeredBsdf(const PbrBsdf<N>& base, const std::optional<Coat>& coat, const std::optional<Sheen>& sheen)
+      : base_(base),
+        coat_(coat ? coat->alpha : 0, coat ? coat->eta : 1, SampledSpectrum<N>(1.f), false, 0),
+        coat_weight_(coat ? coat->weight : 0),
+        coat_alpha_(coat ? coat->alpha : 0),
+        coat_eta_(coat ? std::max(coat->eta, 1.f) : 1),
+        sheen_(sheen ? sheen->color : SampledSpectrum<N>(0.f), sheen ? sheen->alpha : 1),
+        sheen_weight_(sheen ? sheen->color.max() : 0),
+        sheen_alpha_(sheen ? sheen->alpha : 1) {}
+
+  bool is_specular() const {
+    return base_.is_specular() && sheen_weight_ == 0 && (coat_weight_ == 0 || coat_.is_specular());
+  }
+
+  DeltaLobes<N> delta_lobes(const Vec3f& wo) const {
+    DeltaLobes<N> d;
+    if (coat_weight_ > 0) d.add_scaled(coat_.delta_lobes(upper(wo, wo)), coat_weight_);
+    if (wo.z < 0)
+      for (int i = 0; i < d.count; ++i) d.lobes[i].wi = -d.lobes[i].wi;
+    for (const DeltaLobe<N>& l : base_.delta_lobes(wo))
+      d.add({l.wi, l.weight * base_scale(wo, l.wi), l.transmission, l.eta});
+    return d;
+  }
+
+  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
+    SampledSpectrum<N> r = base_.f(wo, wi) * sheen_scale(wo, wi);
+    if (sheen_weight_ > 0) r += sheen_.f(wo, wi);
+    r *= coat_scale(wo, wi);
+    if (coat_weight_ > 0 && same_hemisphere(wo, wi)) r += coat_.f(upper(wo, wo), upper(wo, wi)) * coat_weight_;
+    return r;
+  }
+
+  float pdf(const Vec3f& wo, const Vec3f& wi) const { return mixture_pdf(wo, wi, layer_probabilities(wo)); }
+
+  std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
+    const auto p = layer_probabilities(wo);
+    std::optional<BsdfSample<N>> s;
+    if (uc < p[0]) {
+      s = coat_.sample_f(upper(wo, wo), uc / p[0], u);
+      if (!s) return std::nullopt;
+      s->wi = upper(wo, s->wi);
+      if (s->specular) {
+        s->f *= coat_weight_;
+        s->pdf *= p[0];
+        return s;
+      }
+    } else if (uc < p[0] + p[1]) {
+      s = sheen_.sample_f(wo, 0, u);
+    } else {
+      s = base_.sample_f(wo, std::min((uc - p[0] - p[1]) / p[2], 0.99999994f), u);
+      if (s && s->specular) {
+        s->f *= base_scale(wo, s->wi);
+        s->pdf *= p[2];
+        return s;
+      }
+    }
+    if (!s) return std::nullopt;
+    s->f = f(wo, s->wi);
+    s->pdf = mixture_pdf(wo, s->wi, p);
+    if (!(s->pdf > 0)) return std::nullopt;
+    return s;
+  }
+
+ private:
+  // w as seen from wo's side taken up (the coat is evaluated in the upper hemisphere).
+  static Vec3f upper(const Vec3f& wo, const Vec3f& w) { return wo.z < 0 ? -w : w; }
+
+  float coat_E(float mu) const {
+    return coat_weight_ * SpecularAlbedo::table().E(std::abs(mu), coat_alpha_, coat_eta_);
+  }
+  float sheen_E(float mu) const { return sheen_weight_ * SheenAlbedo::table().E(std::abs(mu), sheen_alpha_); }
+  float coat_scale(const Vec3f& wo, const Vec3f& wi) const {
+    return coat_weight_ > 0 ? (1 - coat_E(wo.z)) * (1 - coat_E(wi.z)) : 1.f;
+  }
+  float sheen_scale(const Vec3f& wo, const Vec3f& wi) const {
+    return sheen_weight_ > 0 ? 1 - std::max(sheen_E(wo.z), sheen_E(wi.z)) : 1.f;
+  }
+  float base_scale(const Vec3f& wo, const Vec3f& wi) const { return coat_scale(wo, wi) * sheen_scale(wo, wi); }
+
+  float mixture_pdf(const Vec3f& wo, const Vec3f& wi, const std::array<float, 3>& p) const {
+    float r = p[2] * base_.pdf(wo, wi);
+    if (p[0] > 0 && same_hemisphere(wo, wi)) r += p[0] * coat_.pdf(upper(wo, wo), upper(wo, wi));
+    if (p[1] > 0) r += p[1] * sheen_.pdf(wo, wi);
+    return r;
+  }
+
+  // The coat's, the sheen's and the base's shares of the light scattered towards wo.
+  std::array<float, 3> layer_probabilities(const Vec3f& wo) const {
+    const float c = coat_E(wo.z), t = 1 - c, s = sheen_E(wo.z);
+    std::array<float, 3> w = {c, t * s, t * (1 - s)};
+    const float sum = w[0] + w[1] + w[2];
+    if (!(sum > 0)) return {0, 0, 1};
+    for (float& x : w) x /= sum;
+    return w;
+  }
+
+  PbrBsdf<N> base_;
+  DielectricBsdf<N> coat_;
+  float coat_weight_, coat_alpha_, coat_eta_;
+  SheenBsdf<N> sheen_;
+  float sheen_weight_, sheen_alpha_;
 };
 
 }  // namespace prism

@@ -15,6 +15,9 @@
 
 #include <complex>
 
+#include "spectral/sampled_spectrum.h"
+#include "spectral/wavelengths.h"
+
 namespace prism {
 
 // A film over a surface: KHR_materials_iridescence's factor (a blend weight on the reflectance),
@@ -43,5 +46,30 @@ inline double thin_film_reflectance(double cos_theta, double lambda_nm, double d
   const double Rp = airy(ratio(n2f * qa, n2a * qf), ratio(n2b * qf, n2f * qb));
   return (Rs + Rp) / 2;
 }
+
+}  // namespace prism
+
+namespace prism {
+
+// A ThinFilm for one path's wavelengths, in the units of the front medium (index n_front): the
+// film's relative index n_film / n_front and the wavelengths in that medium, λ / n_front.
+template <int N>
+struct FilmLanes {
+  float weight, thickness_nm;
+  SampledSpectrum<N> ior, lambda;
+
+  FilmLanes(const ThinFilm& film, const SampledWavelengths<N>& wavelengths, const SampledSpectrum<N>& n_front)
+      : weight(film.weight), thickness_nm(film.thickness_nm) {
+    for (int i = 0; i < N; ++i) ior[i] = film.ior / n_front[i], lambda[i] = wavelengths[i] / n_front[i];
+  }
+
+  // Lane i's reflectance `bare` of the base alone, blended by the weight with the filmed one;
+  // base = the base's relative index. cos_theta < 0: light from inside a dielectric base.
+  float reflectance(int i, float cos_theta, std::complex<double> base, float bare) const {
+    const double r = cos_theta >= 0 ? thin_film_reflectance(cos_theta, lambda[i], thickness_nm, 1, ior[i], base)
+                                    : thin_film_reflectance(cos_theta, lambda[i], thickness_nm, base.real(), ior[i], 1);
+    return bare + weight * (float(r) - bare);
+  }
+};
 
 }  // namespace prism
