@@ -41,6 +41,7 @@ struct Dielectric {
 struct SurfacePoint {
   std::array<Vec2f, 2> uv{};                      // TEXCOORD_0, TEXCOORD_1
   std::array<float, 4> vertex_color{1, 1, 1, 1};  // COLOR_0 (RGBA), white when absent
+  Vec3f coat_normal{0, 0, 1};                     // a clear coat's own normal, in the shading frame
 };
 
 // A PbrMaterial's parameters at one surface point: factor × texture × vertex colour. The
@@ -63,6 +64,8 @@ struct SurfaceInputs {
 struct Clearcoat {  // KHR_materials_clearcoat: a dielectric coat (index 1.5) over everything
   float factor = 0, roughness = 0;
   std::optional<Texture> texture, roughness_texture;  // linear; R × factor, G × roughness
+  std::optional<Texture> normal_texture;              // tangent space, linear: the coat's own normal
+  float normal_scale = 1;
 };
 struct Sheen {  // KHR_materials_sheen: a Charlie sheen over the base
   Rgb color{0, 0, 0};
@@ -152,6 +155,8 @@ inline bool disperses(const Material& m, const Dielectric* front) {
   return d && (d->dispersive || (front && front->dispersive));
 }
 
+// The relative index η ≥ 1 whose normal-incidence reflectance ((η − 1)/(η + 1))² is f0.
+float ior_from_f0(float f0);
 // The relative index η' whose exact normal-incidence reflectance is that of η times c (at most
 // 1): KHR_materials_specular's coloured F0, on η's side of 1.
 float ior_with_scaled_f0(float eta, float c);
@@ -202,10 +207,10 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
   if constexpr (Dispersion)
     if (disperses(m, front)) lambda.terminate_secondary();
   const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
-  // Per-lane reflectance: the specular colour's indices, the film; and the index whose albedo
-  // bounds every lane's, for the diffuse under them (pbr_bsdf.h).
+  // Per-lane reflectance: the specular colour's indices, the film; and for the diffuse under
+  // them, each lane's index (with a film, the one of the film's highest reflectance).
   std::optional<SpectralReflectance<N>> lanes;
-  float coupling_eta = eta;
+  std::optional<SampledSpectrum<N>> lane_etas;
   if (film || p.specular_color != Rgb{1, 1, 1}) {
     lanes.emplace();
     lanes->film = film;
@@ -215,13 +220,12 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
       for (int i = 0; i < N; ++i) reflecting[i] = ior_with_scaled_f0(eta, tint(lambda[i]));
       lanes->eta = reflecting;
     }
-    for (int i = 0; i < N; ++i) {
-      coupling_eta = std::max({coupling_eta, reflecting[i], 1 / reflecting[i]});
-      if (film) {  // a quarter-wave film reflects as an interface of index n_f² / n_base
+    lane_etas = reflecting;
+    if (film)  // the film's reflectance peaks as a quarter-wave layer's, an interface of index n_f²/η
+      for (int i = 0; i < N; ++i) {
         const float quarter_wave = sqr(film->ior[i]) / reflecting[i];
-        coupling_eta = std::max({coupling_eta, quarter_wave, 1 / quarter_wave});
+        (*lane_etas)[i] = std::max({reflecting[i], quarter_wave, 1 / quarter_wave});
       }
-    }
   }
   const DielectricBsdf<N> dielectric(alpha, eta, color, p.thin_walled, p.transmission, p.specular, lanes);
   const bool diffuse_transmission = p.diffuse_transmission > 0;
@@ -230,11 +234,11 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
     return DiffuseBsdf<N>(color);  // no specular layer
   SampledSpectrum<N> transmitted(0.f);
   if (diffuse_transmission) transmitted = sample(RgbAlbedoSpectrum(p.diffuse_transmission_color), lambda);
-  const PbrBsdf<N> pbr(p.metallic, metal, dielectric, p.transmission, color, alpha, coupling_eta, p.specular,
-                       p.diffuse_transmission, transmitted);
+  const PbrBsdf<N> pbr(p.metallic, metal, dielectric, p.transmission, color, alpha, eta, p.specular,
+                       p.diffuse_transmission, transmitted, lane_etas);
   if (!layered) return pbr;
   std::optional<typename LayeredBsdf<N>::Coat> coat;
-  if (p.clearcoat > 0) coat = {p.clearcoat, sqr(p.clearcoat_roughness), 1.5f / n_front[0]};
+  if (p.clearcoat > 0) coat = {p.clearcoat, sqr(p.clearcoat_roughness), 1.5f / n_front[0], at.coat_normal};
   std::optional<typename LayeredBsdf<N>::Sheen> sheen;
   if (p.sheen_color.max() > 0) sheen = {sample(RgbAlbedoSpectrum(p.sheen_color), lambda), sqr(p.sheen_roughness)};
   return LayeredBsdf<N>(pbr, coat, sheen);

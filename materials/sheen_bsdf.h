@@ -6,13 +6,16 @@
 // α = sheenRoughness², Λ their fitted shadowing (exp of L(μ) = a/(1 + b μ^c) + d μ + e, mirrored
 // about μ = ½ for the terminator). Sampled with the cosine-weighted hemisphere: pdf = |cos θ_i|/π
 // (the lobe is broad and faint; the mixture that holds it samples the sharp lobes).
-// Two-sided: a direction below the surface sees the same lobe, mirrored.
+// Two-sided: a direction below the surface sees the same lobe, mirrored. Where the fitted lobe
+// would reflect more than it receives (grazing, α < 0.1), it is scaled down to an albedo of
+// at most 1 (SheenAlbedo::scale).
 
 #include <cmath>
 #include <optional>
 
 #include "base/warp.h"
 #include "materials/bsdf_sample.h"
+#include "materials/sheen_albedo.h"
 
 namespace prism {
 
@@ -48,7 +51,8 @@ class CharlieSheen {
 template <int N>
 class SheenBsdf {
  public:
-  SheenBsdf(const SampledSpectrum<N>& color, float alpha) : color_(color), charlie_(alpha) {}
+  SheenBsdf(const SampledSpectrum<N>& color, float alpha)
+      : color_(color * SheenAlbedo::table().scale(alpha)), charlie_(alpha) {}
 
   bool is_specular() const { return false; }
   DeltaLobes<N> delta_lobes(const Vec3f&) const { return {}; }

@@ -19,6 +19,10 @@ const std::set<std::string> kSupportedExtensions = {
     "KHR_materials_volume",
     "KHR_materials_dispersion",
     "KHR_materials_specular",
+    "KHR_materials_clearcoat",
+    "KHR_materials_sheen",
+    "KHR_materials_iridescence",
+    "KHR_materials_diffuse_transmission",
     "KHR_texture_transform",
     "KHR_mesh_quantization",
 };
