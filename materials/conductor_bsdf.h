@@ -4,7 +4,8 @@
 // with the exact complex Fresnel reflectance of n(λ) + ik(λ) per lane; a mirror when smooth.
 // Single scattering: light that bounces between microfacets is lost (as in Cycles 3.x).
 // Two-sided: a direction below the surface sees the same lobe, mirrored. An optional thin film
-// (KHR_materials_iridescence) over the metal replaces F by the film's exact reflectance.
+// (KHR_materials_iridescence) over the metal replaces F by the film's exact reflectance
+// (compiled in with Extensions = true).
 
 #include <optional>
 
@@ -15,12 +16,12 @@
 
 namespace prism {
 
-template <int N>
+template <int N, bool Extensions = false>
 class ConductorBsdf {
  public:
   // n, k: the metal's complex index relative to the surrounding medium, per lane.
   ConductorBsdf(float alpha, const SampledSpectrum<N>& n, const SampledSpectrum<N>& k,
-                const std::optional<FilmLanes<N>>& film = {})
+                const OptionalPart<Extensions, FilmLanes<N>>& film = {})
       : distribution_(alpha), smooth_(TrowbridgeReitz::effectively_smooth(alpha)), n_(n), k_(k), film_(film) {}
 
   bool is_specular() const { return smooth_; }
@@ -28,8 +29,9 @@ class ConductorBsdf {
   SampledSpectrum<N> reflectance(float cos_theta) const {
     SampledSpectrum<N> r;
     for (int i = 0; i < N; ++i) r[i] = fresnel_conductor(cos_theta, n_[i], k_[i]);
-    if (film_)
-      for (int i = 0; i < N; ++i) r[i] = film_->reflectance(i, std::abs(cos_theta), {n_[i], k_[i]}, r[i]);
+    if constexpr (Extensions)
+      if (film_)
+        for (int i = 0; i < N; ++i) r[i] = film_->reflectance(i, std::abs(cos_theta), {n_[i], k_[i]}, r[i]);
     return r;
   }
 
@@ -77,7 +79,7 @@ class ConductorBsdf {
   TrowbridgeReitz distribution_;
   bool smooth_;
   SampledSpectrum<N> n_, k_;
-  std::optional<FilmLanes<N>> film_;
+  [[no_unique_address]] OptionalPart<Extensions, FilmLanes<N>> film_;
 };
 
 }  // namespace prism

@@ -13,7 +13,7 @@
 // scales the reflectance, s·F, leaving 1 − s·F to pass (KHR_materials_specular's factor).
 // Per-lane reflectance (SpectralReflectance): KHR_materials_specular's colour, as the index η_λ
 // whose exact F0 is the coloured one (F90 stays s), and a thin film (KHR_materials_iridescence)
-// over the interface; without them every lane reflects alike and the scalar path is taken.
+// over the interface (compiled in with Extensions = true); without them every lane reflects alike.
 
 #include <optional>
 
@@ -39,13 +39,13 @@ struct SpectralReflectance {
   std::optional<FilmLanes<N>> film;
 };
 
-template <int N>
+template <int N, bool Extensions = false>
 class DielectricBsdf {
  public:
   // eta = n_back / n_front (the index behind the shading normal over the one in front), one
   // value for all lanes: a λ-dependent index terminates the secondary wavelengths first.
   DielectricBsdf(float alpha, float eta, const SampledSpectrum<N>& tint, bool thin, float transmission = 1.f,
-                 float specular = 1.f, const std::optional<SpectralReflectance<N>>& lanes = {})
+                 float specular = 1.f, const OptionalPart<Extensions, SpectralReflectance<N>>& lanes = {})
       : distribution_(alpha),
         smooth_(TrowbridgeReitz::effectively_smooth(alpha) || eta == 1),
         eta_(eta),
@@ -60,26 +60,31 @@ class DielectricBsdf {
   // Fresnel reflectance at a (micro)facet with cos θ = cos_theta (signed: < 0 from behind), per
   // lane; the thin wall sums the inter-reflections of its two faces.
   SampledSpectrum<N> fresnel(float cos_theta) const {
-    if (!lanes_)
-      return SampledSpectrum<N>(wall(specular_ * fresnel_dielectric(thin_ ? std::abs(cos_theta) : cos_theta, eta_)));
     const float c = thin_ ? std::abs(cos_theta) : cos_theta;
-    SampledSpectrum<N> R;
-    for (int i = 0; i < N; ++i) {
-      const float eta = lanes_->eta ? (*lanes_->eta)[i] : eta_;
-      float r = fresnel_dielectric(c, eta);
-      if (lanes_->film) r = lanes_->film->reflectance(i, c, eta, r);
-      R[i] = wall(specular_ * r);
-    }
-    return R;
+    if constexpr (Extensions)
+      if (lanes_) {
+        SampledSpectrum<N> R;
+        for (int i = 0; i < N; ++i) {
+          const float eta = lanes_->eta ? (*lanes_->eta)[i] : eta_;
+          float r = fresnel_dielectric(c, eta);
+          if (lanes_->film) r = lanes_->film->reflectance(i, c, eta, r);
+          R[i] = wall(specular_ * r);
+        }
+        return R;
+      }
+    return SampledSpectrum<N>(wall(specular_ * fresnel_dielectric(c, eta_)));
   }
-  // The reflected share that picks reflection over transmission when sampling.
-  float reflect_share(const SampledSpectrum<N>& R) const { return lanes_ ? R.average() : R[0]; }
+  // The share that picks reflection over transmission when sampling: the reflectance of every
+  // lane alike (a per-lane one would cost a film per pdf; any choice is unbiased).
+  float selection(float cos_theta) const {
+    return wall(specular_ * fresnel_dielectric(thin_ ? std::abs(cos_theta) : cos_theta, eta_));
+  }
 
   // Smooth interface: the reflected share, and the transmitted direction and share.
   SampledSpectrum<N> reflectance(const Vec3f& wo) const { return fresnel(cos_theta(wo)); }
   std::optional<Transmission<N>> transmission(const Vec3f& wo) const { return transmission(wo, reflectance(wo)); }
   std::optional<Transmission<N>> transmission(const Vec3f& wo, const SampledSpectrum<N>& R) const {
-    if (transmission_ <= 0 || reflect_share(R) >= 1) return std::nullopt;
+    if (transmission_ <= 0 || R.min() >= 1) return std::nullopt;
     const SampledSpectrum<N> T = (SampledSpectrum<N>(1.f) - R) * transmission_;
     if (thin_) return Transmission<N>{-wo, tint_ * T, 1.f};
     const auto refraction = refract(wo, {0, 0, 1}, eta_);
@@ -115,7 +120,7 @@ class DielectricBsdf {
   float pdf(const Vec3f& wo, const Vec3f& wi) const {
     const auto h = half_vector(wo, wi);
     if (!h) return 0.f;
-    const float R = reflect_share(fresnel(dot(wo, h->wm))), T = transmission_ * (1 - R);
+    const float R = selection(dot(wo, h->wm)), T = transmission_ * (1 - R);
     if (R + T <= 0) return 0.f;
     const float Dv = distribution_.D_visible(wo, h->wm);
     if (h->reflection) return Dv / (4 * abs_dot(wo, h->wm)) * R / (R + T);
@@ -128,7 +133,7 @@ class DielectricBsdf {
     if (wo.z == 0) return std::nullopt;
     if (smooth_) return sample_smooth(wo, uc);
     const Vec3f wm = distribution_.sample_visible_normal(wo, u);
-    const float R = reflect_share(fresnel(dot(wo, wm))), T = transmission_ * (1 - R);
+    const float R = selection(dot(wo, wm)), T = transmission_ * (1 - R);
     if (R + T <= 0) return std::nullopt;
     Vec3f wi;
     bool transmitted = false;
@@ -177,7 +182,7 @@ class DielectricBsdf {
   std::optional<BsdfSample<N>> sample_smooth(const Vec3f& wo, float uc) const {
     const SampledSpectrum<N> Rs = reflectance(wo);
     const auto t = transmission(wo, Rs);
-    const float R = reflect_share(Rs), T = t ? transmission_ * (1 - R) : 0.f;
+    const float R = selection(cos_theta(wo)), T = t ? transmission_ * (1 - R) : 0.f;
     if (R + T <= 0) return std::nullopt;
     if (uc < R / (R + T)) {
       const Vec3f wi(-wo.x, -wo.y, wo.z);
@@ -195,7 +200,7 @@ class DielectricBsdf {
   SampledSpectrum<N> tint_;
   bool thin_;
   float transmission_, specular_;
-  std::optional<SpectralReflectance<N>> lanes_;
+  [[no_unique_address]] OptionalPart<Extensions, SpectralReflectance<N>> lanes_;
 };
 
 }  // namespace prism

@@ -197,46 +197,56 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
     }
     n /= n_front, k /= n_front;
   }
-  std::optional<FilmLanes<N>> film;
-  if (p.iridescence > 0 && p.iridescence_thickness > 0)
-    film.emplace(ThinFilm{p.iridescence, p.iridescence_thickness, material.iridescence->ior}, lambda, n_front);
-  const ConductorBsdf<N> metal(alpha, n, k, film);
   const bool layered = p.clearcoat > 0 || p.sheen_color.max() > 0;
-  if (p.metallic >= 1 && !layered) return metal;
+  const bool film = p.iridescence > 0 && p.iridescence_thickness > 0;
+  if (!layered && !film && p.specular_color == Rgb{1, 1, 1} && p.diffuse_transmission <= 0) {
+    // The plain metallic-roughness model, compiled without the extensions' parts.
+    const ConductorBsdf<N> metal(alpha, n, k);
+    if (p.metallic >= 1) return metal;
+    if constexpr (Dispersion)
+      if (disperses(m, front)) lambda.terminate_secondary();
+    const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
+    const DielectricBsdf<N> dielectric(alpha, eta, color, p.thin_walled, p.transmission, p.specular);
+    if (p.metallic <= 0 && p.transmission >= 1) return dielectric;
+    if (p.metallic <= 0 && p.transmission <= 0 && p.specular <= 0) return DiffuseBsdf<N>(color);  // no specular layer
+    return PbrBsdf<N>(p.metallic, metal, dielectric, p.transmission, color, alpha, eta, p.specular);
+  }
 
+  // The extensions: a thin film over the metal and the dielectric, a specular colour, diffuse
+  // transmission, under a clear coat and a sheen.
+  std::optional<FilmLanes<N>> film_lanes;
+  if (film)
+    film_lanes.emplace(ThinFilm{p.iridescence, p.iridescence_thickness, material.iridescence->ior}, lambda, n_front);
+  const ConductorBsdf<N, true> metal(alpha, n, k, p.metallic > 0 ? film_lanes : std::nullopt);
   if constexpr (Dispersion)
     if (disperses(m, front)) lambda.terminate_secondary();
   const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
   // Per-lane reflectance: the specular colour's indices, the film; and for the diffuse under
   // them, each lane's index (with a film, the one of the film's highest reflectance).
   std::optional<SpectralReflectance<N>> lanes;
-  std::optional<SampledSpectrum<N>> lane_etas;
+  typename PbrBsdf<N, true>::Extras extras;
   if (film || p.specular_color != Rgb{1, 1, 1}) {
     lanes.emplace();
-    lanes->film = film;
+    lanes->film = film_lanes;
     SampledSpectrum<N> reflecting(eta);
     if (p.specular_color != Rgb{1, 1, 1}) {
       const RgbUnboundedSpectrum tint(p.specular_color);
       for (int i = 0; i < N; ++i) reflecting[i] = ior_with_scaled_f0(eta, tint(lambda[i]));
       lanes->eta = reflecting;
     }
-    lane_etas = reflecting;
+    extras.lane_etas = reflecting;
     if (film)  // the film's reflectance peaks as a quarter-wave layer's, an interface of index n_f²/η
       for (int i = 0; i < N; ++i) {
-        const float quarter_wave = sqr(film->ior[i]) / reflecting[i];
-        (*lane_etas)[i] = std::max({reflecting[i], quarter_wave, 1 / quarter_wave});
+        const float quarter_wave = sqr(film_lanes->ior[i]) / reflecting[i];
+        (*extras.lane_etas)[i] = std::max({reflecting[i], quarter_wave, 1 / quarter_wave});
       }
   }
-  const DielectricBsdf<N> dielectric(alpha, eta, color, p.thin_walled, p.transmission, p.specular, lanes);
-  const bool diffuse_transmission = p.diffuse_transmission > 0;
-  if (!layered && p.metallic <= 0 && p.transmission >= 1) return dielectric;
-  if (!layered && p.metallic <= 0 && p.transmission <= 0 && p.specular <= 0 && !diffuse_transmission)
-    return DiffuseBsdf<N>(color);  // no specular layer
-  SampledSpectrum<N> transmitted(0.f);
-  if (diffuse_transmission) transmitted = sample(RgbAlbedoSpectrum(p.diffuse_transmission_color), lambda);
-  const PbrBsdf<N> pbr(p.metallic, metal, dielectric, p.transmission, color, alpha, eta, p.specular,
-                       p.diffuse_transmission, transmitted, lane_etas);
-  if (!layered) return pbr;
+  const DielectricBsdf<N, true> dielectric(alpha, eta, color, p.thin_walled, p.transmission, p.specular, lanes);
+  if (p.diffuse_transmission > 0) {
+    extras.diffuse_transmission = p.diffuse_transmission;
+    extras.transmitted_albedo = sample(RgbAlbedoSpectrum(p.diffuse_transmission_color), lambda);
+  }
+  const PbrBsdf<N, true> pbr(p.metallic, metal, dielectric, p.transmission, color, alpha, eta, p.specular, extras);
   std::optional<typename LayeredBsdf<N>::Coat> coat;
   if (p.clearcoat > 0) coat = {p.clearcoat, sqr(p.clearcoat_roughness), 1.5f / n_front[0], at.coat_normal};
   std::optional<typename LayeredBsdf<N>::Sheen> sheen;

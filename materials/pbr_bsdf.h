@@ -30,15 +30,23 @@
 
 namespace prism {
 
-template <int N>
+// Extensions = false compiles the plain metallic-roughness model, true adds diffuse
+// transmission and the per-lane reflectance of the glTF extensions (LayeredBsdf's base).
+template <int N, bool Extensions = false>
 class PbrBsdf {
  public:
-  // alpha, eta and specular must be those of `dielectric` (they pick its albedo E); lane_etas
-  // the indices of its lanes when they reflect differently.
-  PbrBsdf(float metallic, const ConductorBsdf<N>& metal, const DielectricBsdf<N>& dielectric, float transmission,
-          const SampledSpectrum<N>& albedo, float alpha, float eta, float specular, float diffuse_transmission = 0,
-          const SampledSpectrum<N>& diffuse_transmission_color = {},
-          const std::optional<SampledSpectrum<N>>& lane_etas = {})
+  // The extensions' parts: diffuse transmission, and the indices of the lanes when they reflect
+  // differently (specular colour, thin film).
+  struct Extras {
+    float diffuse_transmission = 0;
+    SampledSpectrum<N> transmitted_albedo{0.f};
+    std::optional<SampledSpectrum<N>> lane_etas;
+  };
+
+  // alpha, eta and specular must be those of `dielectric` (they pick its albedo E).
+  PbrBsdf(float metallic, const ConductorBsdf<N, Extensions>& metal, const DielectricBsdf<N, Extensions>& dielectric,
+          float transmission, const SampledSpectrum<N>& albedo, float alpha, float eta, float specular,
+          const OptionalPart<Extensions, Extras>& extras = {})
       : metallic_(metallic),
         transmission_(transmission),
         metal_(metal),
@@ -47,12 +55,15 @@ class PbrBsdf {
         alpha_(alpha),
         eta_(eta),
         specular_(specular),
-        e_avg_(specular * SpecularAlbedo::table().average(alpha, eta)),
-        diffuse_transmission_(diffuse_transmission),
-        transmitted_albedo_(diffuse_transmission_color) {
-    if (!lane_etas) return;
-    lanes_ = {*lane_etas, {}};
-    for (int i = 0; i < N; ++i) lanes_->e_avg[i] = specular * SpecularAlbedo::table().average(alpha, (*lane_etas)[i]);
+        e_avg_(specular * SpecularAlbedo::table().average(alpha, eta)) {
+    if constexpr (Extensions) {
+      if (!extras) return;
+      extras_ = Parts{extras->diffuse_transmission, extras->transmitted_albedo, {}};
+      if (!extras->lane_etas) return;
+      extras_->lanes = LaneCoupling{*extras->lane_etas, {}};
+      for (int i = 0; i < N; ++i)
+        extras_->lanes->e_avg[i] = specular * SpecularAlbedo::table().average(alpha, (*extras->lane_etas)[i]);
+    }
   }
 
   bool is_specular() const {
@@ -71,10 +82,12 @@ class PbrBsdf {
     if (flips(wo)) return f(-wo, -wi);
     SampledSpectrum<N> r = metal_.f(wo, wi) * metallic_ + dielectric_.f(wo, wi) * (1 - metallic_);
     if (diffuse_weight() <= 0) return r;
-    if (same_hemisphere(wo, wi))
-      r += albedo_ * coupling(wo, wi) * (diffuse_weight() * (1 - diffuse_transmission_) * kInvPi);
-    else if (diffuse_transmission_ > 0)
-      r += transmitted_albedo_ * coupling(wo, wi) * (diffuse_weight() * diffuse_transmission_ * kInvPi);
+    if (same_hemisphere(wo, wi)) {
+      r += albedo_ * (coupling(wo, wi) * (diffuse_weight() * (1 - diffuse_transmission()) * kInvPi));
+    } else if constexpr (Extensions) {
+      if (diffuse_transmission() > 0)
+        r += extras_->transmitted_albedo * (coupling(wo, wi) * (diffuse_weight() * diffuse_transmission() * kInvPi));
+    }
     return r;
   }
 
@@ -98,7 +111,7 @@ class PbrBsdf {
       s = dielectric_.sample_f(wo, std::min((uc - p[0]) / p[1], 0.99999994f), u);
       if (s && s->specular) return scaled(*s, 1 - metallic_, p[1]);
     } else {  // the diffuse base: reflected (p[2]) or transmitted to the far side (p[3])
-      const bool far_side = uc >= 1 - p[3];
+      const bool far_side = Extensions && uc >= 1 - p[3];
       Vec3f wi = sample_cosine_hemisphere(u);
       if ((wo.z < 0) != far_side) wi.z = -wi.z;
       s = BsdfSample<N>{{}, wi, 0.f, false, far_side};
@@ -118,25 +131,42 @@ class PbrBsdf {
   }
 
   float diffuse_weight() const { return (1 - metallic_) * (1 - transmission_); }
+  float diffuse_transmission() const {
+    if constexpr (Extensions)
+      if (extras_) return extras_->diffuse_transmission;
+    return 0.f;
+  }
 
   float E(float mu) const { return specular_ * SpecularAlbedo::table().E(std::abs(mu), alpha_, eta_); }
-  SampledSpectrum<N> coupling(const Vec3f& wo, const Vec3f& wi) const {
-    if (!lanes_) return SampledSpectrum<N>(e_avg_ < 1 ? (1 - E(wo.z)) * (1 - E(wi.z)) / (1 - e_avg_) : 0.f);
-    SampledSpectrum<N> c;
-    for (int i = 0; i < N; ++i) {
-      const auto lane_E = [&](float mu) {
-        return specular_ * SpecularAlbedo::table().E(std::abs(mu), alpha_, lanes_->eta[i]);
-      };
-      const float e_avg = lanes_->e_avg[i];
-      c[i] = e_avg < 1 ? (1 - lane_E(wo.z)) * (1 - lane_E(wi.z)) / (1 - e_avg) : 0.f;
+  // The coupling factor (1 − E(μ_o))(1 − E(μ_i)) / (1 − E_avg): one value, or one per lane.
+  float scalar_coupling(const Vec3f& wo, const Vec3f& wi) const {
+    return e_avg_ < 1 ? (1 - E(wo.z)) * (1 - E(wi.z)) / (1 - e_avg_) : 0.f;
+  }
+  auto coupling(const Vec3f& wo, const Vec3f& wi) const {
+    if constexpr (!Extensions) {
+      return scalar_coupling(wo, wi);
+    } else {
+      if (!extras_ || !extras_->lanes) return SampledSpectrum<N>(scalar_coupling(wo, wi));
+      const LaneCoupling& lanes = *extras_->lanes;
+      SampledSpectrum<N> c;
+      for (int i = 0; i < N; ++i) {
+        const auto lane_E = [&](float mu) {
+          return specular_ * SpecularAlbedo::table().E(std::abs(mu), alpha_, lanes.eta[i]);
+        };
+        c[i] = lanes.e_avg[i] < 1 ? (1 - lane_E(wo.z)) * (1 - lane_E(wi.z)) / (1 - lanes.e_avg[i]) : 0.f;
+      }
+      return c;
     }
-    return c;
   }
 
   // Σ (probability of lobe) × (its pdf), for the probabilities of wo (not flipped).
   float mixture_pdf(const Vec3f& wo, const Vec3f& wi, const std::array<float, 4>& p) const {
-    const float r = p[0] * metal_.pdf(wo, wi) + p[1] * dielectric_.pdf(wo, wi);
-    return r + p[same_hemisphere(wo, wi) ? 2 : 3] * cosine_hemisphere_pdf(abs_cos_theta(wi));
+    float r = p[0] * metal_.pdf(wo, wi) + p[1] * dielectric_.pdf(wo, wi);
+    if (same_hemisphere(wo, wi))
+      r += p[2] * cosine_hemisphere_pdf(abs_cos_theta(wi));
+    else if constexpr (Extensions)
+      r += p[3] * cosine_hemisphere_pdf(abs_cos_theta(wi));
+    return r;
   }
 
   // Probabilities of sampling the metal, the dielectric interface, the diffuse base and its
@@ -144,8 +174,10 @@ class PbrBsdf {
   std::array<float, 4> lobe_probabilities(const Vec3f& wo) const {
     const float e = E(wo.z), diffuse = diffuse_weight() * (1 - e);
     std::array<float, 4> w = {metallic_, (1 - metallic_) * (e + transmission_ * (1 - e)),
-                              diffuse * (1 - diffuse_transmission_) * std::max(albedo_.average(), 0.f),
-                              diffuse * diffuse_transmission_ * std::max(transmitted_albedo_.average(), 0.f)};
+                              diffuse * (1 - diffuse_transmission()) * std::max(albedo_.average(), 0.f), 0.f};
+    if constexpr (Extensions)
+      if (extras_)
+        w[3] = diffuse * extras_->diffuse_transmission * std::max(extras_->transmitted_albedo.average(), 0.f);
     const float sum = w[0] + w[1] + w[2] + w[3];
     if (!(sum > 0)) return {0, 1, 0, 0};
     for (float& x : w) x /= sum;
@@ -159,17 +191,21 @@ class PbrBsdf {
     return s;
   }
 
-  float metallic_, transmission_;
-  ConductorBsdf<N> metal_;
-  DielectricBsdf<N> dielectric_;
-  SampledSpectrum<N> albedo_;
-  float alpha_, eta_, specular_, e_avg_;
-  float diffuse_transmission_;
-  SampledSpectrum<N> transmitted_albedo_;
   struct LaneCoupling {
     SampledSpectrum<N> eta, e_avg;
   };
-  std::optional<LaneCoupling> lanes_;
+  struct Parts {
+    float diffuse_transmission;
+    SampledSpectrum<N> transmitted_albedo;
+    std::optional<LaneCoupling> lanes;
+  };
+
+  float metallic_, transmission_;
+  ConductorBsdf<N, Extensions> metal_;
+  DielectricBsdf<N, Extensions> dielectric_;
+  SampledSpectrum<N> albedo_;
+  float alpha_, eta_, specular_, e_avg_;
+  [[no_unique_address]] OptionalPart<Extensions, Parts> extras_;
 };
 
 // The glTF base under its top layers, KHR_materials_sheen and KHR_materials_clearcoat, each
@@ -196,7 +232,7 @@ class LayeredBsdf {
     float alpha;
   };
 
-  LayeredBsdf(const PbrBsdf<N>& base, const std::optional<Coat>& coat, const std::optional<Sheen>& sheen)
+  LayeredBsdf(const PbrBsdf<N, true>& base, const std::optional<Coat>& coat, const std::optional<Sheen>& sheen)
       : base_(base),
         coat_(coat ? coat->alpha : 0, coat ? coat->eta : 1, SampledSpectrum<N>(1.f), false, 0),
         coat_weight_(coat ? coat->weight : 0),
@@ -306,7 +342,7 @@ class LayeredBsdf {
     return w;
   }
 
-  PbrBsdf<N> base_;
+  PbrBsdf<N, true> base_;
   DielectricBsdf<N> coat_;
   float coat_weight_, coat_alpha_, coat_eta_;
   bool coat_tilted_;

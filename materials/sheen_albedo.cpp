@@ -30,8 +30,8 @@ float directional_albedo(const CharlieSheen& sheen, float mu) {
 
 }  // namespace
 
-SheenAlbedo::SheenAlbedo() {
-  for (int a = 0; a < kAlpha; ++a) {
+const float* SheenAlbedo::row(int a) const {
+  std::call_once(ready_[a], [this, a] {
     const CharlieSheen sheen(alpha_of(a));
     float peak = 1;
     for (int m = 0; m < kMu; ++m) {
@@ -40,7 +40,8 @@ SheenAlbedo::SheenAlbedo() {
     }
     for (int m = 0; m < kMu; ++m) e_[a * kMu + m] /= peak;
     scale_[a] = 1 / peak;
-  }
+  });
+  return &e_[a * kMu];
 }
 
 const SheenAlbedo& SheenAlbedo::table() {
@@ -51,6 +52,7 @@ const SheenAlbedo& SheenAlbedo::table() {
 float SheenAlbedo::scale(float alpha) const {
   const float y = std::sqrt(std::clamp(alpha, 0.f, 1.f)) * (kAlpha - 1);
   const int j = std::min(int(y), kAlpha - 2);
+  row(j), row(j + 1);
   return lerp(y - float(j), scale_[j], scale_[j + 1]);
 }
 
@@ -59,7 +61,8 @@ float SheenAlbedo::E(float mu, float alpha) const {
   const float y = std::sqrt(std::clamp(alpha, 0.f, 1.f)) * (kAlpha - 1);
   const int i = std::min(int(x), kMu - 2), j = std::min(int(y), kAlpha - 2);
   const float tx = x - float(i), ty = y - float(j);
-  const float* e = &e_[j * kMu + i];
+  row(j + 1);
+  const float* e = row(j) + i;
   return (1 - ty) * ((1 - tx) * e[0] + tx * e[1]) + ty * ((1 - tx) * e[kMu] + tx * e[kMu + 1]);
 }
 

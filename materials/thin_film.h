@@ -31,17 +31,27 @@ struct ThinFilm {
 // arriving from the ambient at cos θ = cos_theta (its absolute value is used).
 inline double thin_film_reflectance(double cos_theta, double lambda_nm, double d_nm, double n_ambient, double n_film,
                                     std::complex<double> n_base) {
+  // Complex arithmetic written out where the library's would call the (slow, NaN-guarding)
+  // complex division: x / y = x ȳ / |y|².
   using C = std::complex<double>;
   const double c = std::min(std::abs(cos_theta), 1.0);
   const double s2 = n_ambient * n_ambient * (1 - c * c);  // (n_a sin θ_a)², conserved across layers
-  const C qa(n_ambient * c), qf = std::sqrt(C(n_film * n_film - s2)), qb = std::sqrt(n_base * n_base - s2);
-  const C n2a(n_ambient * n_ambient), n2f(n_film * n_film), n2b = n_base * n_base;
-  const C phase = std::exp(C(0, 4 * 3.14159265358979323846 * d_nm / lambda_nm) * qf);  // e^{2iβ}
-  const auto airy = [&](C r_af, C r_fb) {
-    const C den = 1.0 + r_af * r_fb * phase;
-    return std::norm(den) == 0 ? 1.0 : std::min(1.0, std::norm((r_af + r_fb * phase) / den));
+  const auto root = [](C x) {  // principal square root; real arguments without the library call
+    if (x.imag() == 0) return x.real() >= 0 ? C(std::sqrt(x.real()), 0) : C(0, std::sqrt(-x.real()));
+    return std::sqrt(x);
   };
-  const auto ratio = [](C a, C b) { return std::norm(a + b) == 0 ? C(1) : (a - b) / (a + b); };
+  const C qa(n_ambient * c), qf = root(C(n_film * n_film - s2)), qb = root(n_base * n_base - s2);
+  const C n2a(n_ambient * n_ambient), n2f(n_film * n_film), n2b = n_base * n_base;
+  const double k = 4 * 3.14159265358979323846 * d_nm / lambda_nm;  // e^{2iβ} = e^{i k q_f}
+  const C phase = std::exp(-k * qf.imag()) * C(std::cos(k * qf.real()), std::sin(k * qf.real()));
+  const auto airy = [&](C r_af, C r_fb) {
+    const double den = std::norm(1.0 + r_af * r_fb * phase);
+    return den == 0 ? 1.0 : std::min(1.0, std::norm(r_af + r_fb * phase) / den);
+  };
+  const auto ratio = [](C a, C b) {
+    const double den = std::norm(a + b);
+    return den == 0 ? C(1) : (a - b) * std::conj(a + b) / den;
+  };
   const double Rs = airy(ratio(qa, qf), ratio(qf, qb));
   const double Rp = airy(ratio(n2f * qa, n2a * qf), ratio(n2b * qf, n2f * qb));
   return (Rs + Rp) / 2;
