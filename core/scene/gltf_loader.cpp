@@ -20,10 +20,14 @@ const std::map<std::string, const char*> kSupportedExtensions = {
     {"KHR_materials_ior", "the dielectric's index of refraction"},
     {"KHR_materials_volume", "closed volumes with Beer-Lambert absorption; thickness 0 is a thin wall"},
     {"KHR_materials_dispersion", "index varying with wavelength (Abbe number)"},
-    {"KHR_materials_specular", "specularFactor scales the dielectric reflectance (colour ignored)"},
+    {"KHR_materials_specular", "specular strength and colour: the F0 of an exact Fresnel curve per wavelength"},
     {"KHR_texture_transform", "texture coordinate offset, rotation and scale"},
     {"KHR_mesh_quantization", "integer and normalized vertex attributes"},
     {"KHR_materials_variants", "material sets, chosen with --variant NAME"},
+    {"KHR_materials_clearcoat", "a GGX dielectric coat (IOR 1.5) over the base, albedo-scaled layering"},
+    {"KHR_materials_sheen", "Charlie sheen over the base, albedo-scaled layering"},
+    {"KHR_materials_iridescence", "exact thin-film interference (Airy sum) per wavelength"},
+    {"KHR_materials_diffuse_transmission", "a Lambertian lobe on the far side"},
 };
 
 // Images are kept encoded at load time and decoded only when a material that the scene's
