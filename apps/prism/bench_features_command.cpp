@@ -25,7 +25,7 @@ struct FeaturesArgs {
 double best_samples_per_second(const PreparedScene& p, RenderOptions options, int repeat) {
   double best = 0;
   for (int r = 0; r < repeat; ++r)
-    best = std::max(best, render(*p.world, *p.camera, options).stats.samples_per_second());
+    best = std::max(best, render(*p.world, *p.camera, options).stats().samples_per_second());
   return best;
 }
 

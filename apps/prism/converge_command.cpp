@@ -74,10 +74,11 @@ Errors errors(const std::vector<float>& image, const std::vector<float>& referen
 }
 
 std::vector<float> render_rgb(const PreparedScene& p, const RenderOptions& options, RenderStats* stats = nullptr) {
-  RenderResult r = render(*p.world, *p.camera, options);
-  ColorPipeline::standard().convert(ColorPipeline::kXyz, ColorPipeline::kDefaultOutput, r.xyz.data(), r.xyz.size() / 3);
-  if (stats) *stats = r.stats;
-  return r.xyz;
+  const RenderResult r = render(*p.world, *p.camera, options);
+  std::vector<float> rgb = r.state.film.xyz_image();
+  ColorPipeline::standard().convert(ColorPipeline::kXyz, ColorPipeline::kDefaultOutput, rgb.data(), rgb.size() / 3);
+  if (stats) *stats = r.stats();
+  return rgb;
 }
 
 std::vector<float> reference_image(const ConvergeArgs& args, const PreparedScene& p) {
@@ -195,7 +196,8 @@ void run(const ConvergeArgs& args) {
        << fmt::format("x{:.2f}{}", doubling, biased ? " (biased)" : "") << " |\n";
   }
   md << "\nAn unbiased configuration's MSE halves with each doubling of the sample budget (x0.50). One whose MSE "
-        "stops falling (above x0.80), or whose mean error exceeds 2% of the image mean, is biased for this scene (the Whitted tracer omits "
+        "stops falling (above x0.80), or whose mean error exceeds 2% of the image mean, is biased for this scene (the "
+        "Whitted tracer omits "
         "indirect diffuse light and rough reflection), and its time to an error it only passes on the way to its "
         "bias is no speed-up.\n";
   md.close();

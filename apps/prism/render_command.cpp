@@ -1,14 +1,23 @@
-// `prism render SCENE -o OUT.exr`: loads a glTF scene, renders it and writes a scene-referred
-// OpenEXR image (and optionally an sRGB preview PNG), printing the render statistics. With
-// `--frames A:B` it renders the animation's frames A to B, loading the file once.
+// `prism render SCENE -o OUT.exr`: loads a glTF scene, renders it in progressive passes and writes
+// a scene-referred OpenEXR image (with AOV layers and spectral bins on request, and optionally an
+// sRGB preview PNG), printing the render statistics and the image's estimated error. Stops early
+// on --time-limit or a first SIGINT/SIGTERM (writing what it has), keeps a checkpoint to
+// --resume from, and aborts without output on a second signal. With `--frames A:B` it renders the
+// animation's frames A to B, loading the file once.
+
+#include <chrono>
+#include <sstream>
 
 #include "apps/prism/commands.h"
 #include "apps/prism/frame_sequence.h"
 #include "apps/prism/scene_setup.h"
 #include "base/clock.h"
 #include "base/error.h"
+#include "base/interrupt.h"
 #include "base/log.h"
+#include "render/checkpoint.h"
 #include "render/image_output.h"
+#include "render/pass_schedule.h"
 
 namespace prism {
 
@@ -16,28 +25,146 @@ namespace {
 
 struct RenderArgs {
   SceneArgs scene;
-  std::string output, preview, colorspace = ColorPipeline::kDefaultOutput;
-  bool half = false, quiet = false;
+  std::string output, preview, colorspace = ColorPipeline::kDefaultOutput, aovs, spectral_bins;
+  bool half = false, quiet = false, verbose = false, resume = false;
+  double checkpoint = 0;
   std::string frames;  // "A:B"
   double fps = 24;
   RenderOptions options;
 };
 
+uint32_t parse_aovs(const std::string& text) {
+  const std::pair<const char*, Aov> names[] = {{"albedo", kAovAlbedo},
+                                               {"normal", kAovNormal},
+                                               {"depth", kAovDepth},
+                                               {"variance", kAovVariance},
+                                               {"spp", kAovSpp}};
+  uint32_t aovs = 0;
+  std::stringstream ss(text);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) {
+    const auto* it = std::find_if(std::begin(names), std::end(names), [&](const auto& n) { return cell == n.first; });
+    if (it == std::end(names))
+      fail("--aov '{}': unknown AOV '{}'; choose from albedo, normal, depth, variance, spp", text, cell);
+    aovs |= it->second;
+  }
+  return aovs;
+}
+
+// Everything that shapes the image but the sample count: a checkpoint resumes only with these.
+std::string fingerprint(const RenderArgs& args, const Camera& camera, const RenderOptions& o,
+                        std::optional<double> time) {
+  const SceneArgs& s = args.scene;
+  return fmt::format(
+      "scene={} time={} env={} env-map={} env-rotate={} env-scale={} camera={} size={}x{} integrator={} seed={} "
+      "sampler={} wavelengths={} max-depth={} light-sampling={} noise-threshold={} aovs={} spectral-bins={}",
+      std::filesystem::absolute(s.scene).string(), time ? fmt::format("{}", *time) : "-", s.env, s.env_map,
+      s.env_rotate, s.env_scale, s.camera, camera.width(), camera.height(), integrator_name(o.integrator), o.seed,
+      sampler_name(o.sampler), o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf", o.noise_threshold,
+      o.aovs, o.spectral_bins.to_string());
+}
+
+// The image's error as the log and the header state it.
+std::string error_summary(const Film& film) {
+  return fmt::format("estimated relative RMSE {:.4g} (per pixel: median {:.3g}, 90th percentile {:.3g})",
+                     film.estimated_rel_rmse(), film.pixel_rel_rmse_quantile(0.5), film.pixel_rel_rmse_quantile(0.9));
+}
+
+// Planar copy of one field of an interleaved image.
+std::vector<float> plane(const std::vector<float>& interleaved, int fields, int field) {
+  std::vector<float> out(interleaved.size() / fields);
+  for (size_t p = 0; p < out.size(); ++p) out[p] = interleaved[p * fields + field];
+  return out;
+}
+
+// The AOV layers and spectral bins the options ask for.
+std::vector<ExrChannel> extra_channels(const Film& film, const std::string& colorspace) {
+  std::vector<ExrChannel> channels;
+  const auto add_layer = [&](const std::string& layer, const std::vector<float>& image, const char* names) {
+    for (int c = 0; c < 3; ++c) channels.push_back({layer + "." + names[c], plane(image, 3, c)});
+  };
+  if (film.aovs() & kAovAlbedo) {
+    std::vector<float> albedo = film.albedo_image();
+    ColorPipeline::standard().convert(ColorPipeline::kXyz, colorspace, albedo.data(), albedo.size() / 3);
+    add_layer("albedo", albedo, "RGB");
+  }
+  if (film.aovs() & kAovNormal) add_layer("N", film.normal_image(), "XYZ");
+  if (film.aovs() & kAovDepth) channels.push_back({"Z", film.depth_image()});
+  if (film.aovs() & kAovVariance) {
+    std::vector<float> v(film.pixel_count());
+    for (size_t p = 0; p < v.size(); ++p) v[p] = float(film.variance_of_mean(p));
+    channels.push_back({"variance.Y", std::move(v)});
+  }
+  if (film.aovs() & kAovSpp) {
+    std::vector<float> n(film.pixel_count());
+    for (size_t p = 0; p < n.size(); ++p) n[p] = float(film.samples(p));
+    channels.push_back({"spp", std::move(n)});
+  }
+  const SpectralBins& bins = film.bins();
+  if (bins.count() > 0) {
+    const std::vector<float> spectral = film.spectral_image();
+    for (int b = 0; b < bins.count(); ++b) channels.push_back({bins.channel_name(b), plane(spectral, bins.count(), b)});
+  }
+  return channels;
+}
+
+struct SampleCounts {
+  uint32_t min = ~0u, max = 0;
+  double mean = 0;
+};
+SampleCounts sample_counts(const Film& film) {
+  SampleCounts c;
+  for (size_t p = 0; p < film.pixel_count(); ++p) {
+    c.min = std::min(c.min, film.samples(p));
+    c.max = std::max(c.max, film.samples(p));
+    c.mean += film.samples(p);
+  }
+  c.mean /= double(film.pixel_count());
+  return c;
+}
+
 // Renders the prepared scene to `output` (and `preview`); `time` is the animation time posed.
-void render_image(const RenderArgs& args, const PreparedScene& prepared, const std::string& output,
+// Returns false if a signal interrupted it.
+bool render_image(const RenderArgs& args, const PreparedScene& prepared, const std::string& output,
                   const std::string& preview, std::optional<double> time) {
   const std::string colorspace = ColorPipeline::standard().canonical_name(args.colorspace);
   const Chromaticities chromaticities = ColorPipeline::standard().chromaticities(colorspace);
-  const Camera& camera = *prepared.camera;
-
-  log::info("rendering {}x{} at {} spp, {} wavelengths per path", camera.width(), camera.height(), args.options.spp,
-            args.options.wavelengths);
   RenderOptions options = args.options;
   options.progress = !args.quiet;
-  const RenderResult result = render(*prepared.world, camera, options);
-  log::info("{}", result.stats.summary());
+  options.aovs = parse_aovs(args.aovs);
+  if (!args.spectral_bins.empty()) options.spectral_bins = SpectralBins::parse(args.spectral_bins);
+  const std::filesystem::path checkpoint = output + ".checkpoint";
+  const Camera& camera = *prepared.camera;
+  const std::string print = fingerprint(args, camera, options, time);
+  std::optional<RenderState> resume;
+  if (args.resume) {
+    resume = load_checkpoint(checkpoint, print);
+    log::info("resuming {} after pass {} ({} samples)", checkpoint.string(), resume->passes, resume->stats.samples);
+  }
 
-  ExrImage image{result.width, result.height, result.xyz, chromaticities, {}};
+  log::info("rendering {}x{} at {} spp{}, {} wavelengths per path", camera.width(), camera.height(), options.spp,
+            options.noise_threshold > 0 ? fmt::format(" at most (noise threshold {})", options.noise_threshold) : "",
+            options.wavelengths);
+  auto last_checkpoint = std::chrono::steady_clock::now();
+  RenderControl control{&interrupt::requested(), [&](const PassReport& pass, const RenderState& state) {
+                          log::verbose("pass {}: {} spp, {} pixels sampled, {:.1f} s; {}", pass.pass + 1,
+                                       pass.samples_end, pass.active_pixels, state.stats.seconds,
+                                       error_summary(state.film));
+                          if (args.checkpoint > 0 && seconds_since(last_checkpoint) >= args.checkpoint) {
+                            save_checkpoint(checkpoint, state, print);
+                            last_checkpoint = std::chrono::steady_clock::now();
+                          }
+                        }};
+  const RenderResult result = render(*prepared.world, camera, options, control, std::move(resume));
+  const Film& film = result.state.film;
+  log::info("{}", result.stats().summary());
+  log::info("{}", error_summary(film));
+  const bool complete = result.state.passes >= pass_count(options.spp);
+  if (result.interrupted) log::warn("interrupted after pass {}: writing what it has", result.state.passes);
+  if (result.timed_out) log::info("time limit reached after pass {}", result.state.passes);
+
+  const SampleCounts counts = sample_counts(film);
+  ExrImage image{film.width(), film.height(), film.xyz_image(), chromaticities, {}, extra_channels(film, colorspace)};
   ColorPipeline::standard().convert(ColorPipeline::kXyz, colorspace, image.rgb.data(), image.rgb.size() / 3);
   image.metadata = {
       {"software", std::string("Prism " PRISM_VERSION)},
@@ -45,31 +172,58 @@ void render_image(const RenderArgs& args, const PreparedScene& prepared, const s
       {"prism.integrator", std::string(integrator_name(options.integrator))},
       {"prism.sampler", std::string(sampler_name(options.sampler))},
       {"prism.lightSampling", std::string(options.path.next_event ? "mis" : "bsdf")},
-      {"prism.spp", options.spp},
-      {"prism.seconds", result.stats.seconds},
+      {"prism.spp", int(counts.max)},
+      {"prism.sppMin", int(counts.min)},
+      {"prism.sppMean", counts.mean},
+      {"prism.sppRequested", options.spp},
+      {"prism.passes", result.state.passes},
+      {"prism.seconds", result.stats().seconds},
       {"prism.seed", std::to_string(options.seed)},
       {"prism.wavelengthsPerPath", options.wavelengths},
       {"prism.maxDepth", options.path.max_depth},
       {"prism.colorSpace", colorspace},
       {"prism.sceneFeatures", prepared.world->features().to_string()},
-      {"prism.invalidSamples", std::to_string(result.stats.invalid_samples)},
+      {"prism.invalidSamples", std::to_string(result.stats().invalid_samples)},
+      {"prism.estimatedRelRmse", film.estimated_rel_rmse()},
+      {"prism.interrupted", int(result.interrupted)},
   };
+  if (options.noise_threshold > 0) image.metadata.push_back({"prism.noiseThreshold", options.noise_threshold});
+  if (options.time_limit > 0) image.metadata.push_back({"prism.timeLimit", options.time_limit});
   if (time) image.metadata.push_back({"prism.time", *time});
+  if (options.spectral_bins.count() > 0) {
+    image.metadata.push_back({"spectralLayoutVersion", std::string("1.0")});
+    image.metadata.push_back({"emissiveUnits", std::string("W.m^-2.sr^-1")});
+  }
+  // A second signal from here on removes what this run wrote, as it would have before.
+  std::vector<std::unique_ptr<interrupt::RemoveOnAbort>> written;
   write_exr(output, image, args.half);
-  std::printf("wrote %s (%dx%d, %s)\n", output.c_str(), result.width, result.height, colorspace.c_str());
+  written.push_back(std::make_unique<interrupt::RemoveOnAbort>(output));
+  std::printf("wrote %s (%dx%d, %s)\n", output.c_str(), film.width(), film.height(), colorspace.c_str());
 
   if (!preview.empty()) {
-    std::vector<float> display = result.xyz;
+    std::vector<float> display = film.xyz_image();
     ColorPipeline::standard().xyz_to_display(ColorPipeline::kDefaultDisplay, ColorPipeline::kDefaultView,
                                              display.data(), display.size() / 3);
-    write_png(preview, result.width, result.height, display);
+    write_png(preview, film.width(), film.height(), display);
+    written.push_back(std::make_unique<interrupt::RemoveOnAbort>(preview));
     std::printf("wrote %s (preview, %s / %s)\n", preview.c_str(), ColorPipeline::kDefaultDisplay,
                 ColorPipeline::kDefaultView);
   }
+  if (args.checkpoint > 0 && !complete) {
+    save_checkpoint(checkpoint, result.state, print);
+    std::printf("wrote %s (resume with --resume)\n", checkpoint.string().c_str());
+  } else if (complete) {
+    std::error_code ec;
+    std::filesystem::remove(checkpoint, ec);  // the render is done: nothing to resume
+  }
+  written.clear();
+  return !result.interrupted;
 }
 
 void run(const RenderArgs& args) {
   if (args.quiet) log::set_level(log::Level::warn);
+  if (args.verbose) log::set_level(log::Level::verbose);
+  interrupt::install();
   ColorPipeline::standard().canonical_name(args.colorspace);  // a bad name fails before any work
   if (args.frames.empty()) {
     render_image(args, prepare_scene(args.scene), args.output, args.preview, args.scene.gltf.time);
@@ -86,8 +240,11 @@ void run(const RenderArgs& args) {
     const double time = frame / args.fps;
     log::info("frame {} ({} of {}) at {:.4f} s", frame, frame - range.first + 1, range.last - range.first + 1, time);
     if (frame > range.first && !pose_scene(prepared, scene_args, time)) log::info("nothing moved: same world");
-    render_image(args, prepared, frame_path(args.output, int(frame)),
-                 args.preview.empty() ? "" : frame_path(args.preview, int(frame)), time);
+    if (!render_image(args, prepared, frame_path(args.output, int(frame)),
+                      args.preview.empty() ? "" : frame_path(args.preview, int(frame)), time)) {
+      log::warn("interrupted: frames after {} not rendered", frame);
+      return;
+    }
   }
   log::info("rendered {} frames in {:.1f} s", range.last - range.first + 1, seconds_since(t0));
 }
@@ -106,11 +263,30 @@ void add_render_command(CLI::App& app) {
       ->excludes("--time");
   cmd->add_option("--fps", args->fps, "Frames per second of --frames: frame N is at N / fps seconds")->default_val(24);
   add_render_options(cmd, args->options);
+  cmd->add_option("--noise-threshold", args->options.noise_threshold,
+                  "Adaptive sampling: a pixel stops when its estimated error is below T (README); --spp is then "
+                  "the maximum")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--time-limit", args->options.time_limit,
+                  "Stop after the pass that reaches SECONDS of rendering (the header records the samples taken)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--checkpoint", args->checkpoint,
+                  "Keep a resumable state file OUTPUT.checkpoint, rewritten every SECONDS (and on interruption)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--resume", args->resume,
+                "Continue the render saved in OUTPUT.checkpoint (same scene and options; --spp may grow)");
+  cmd->add_option("--aov", args->aovs,
+                  "Extra EXR layers, comma-separated: albedo (albedo.R/G/B), normal (N.X/Y/Z), depth (Z), "
+                  "variance (variance.Y), spp");
+  cmd->add_option("--spectral-bins", args->spectral_bins,
+                  "Also write spectral radiance: N equal bins over 360-830 nm, or comma-separated edges in nm "
+                  "(channels S0.<nm>nm, OpenEXR spectral layout)");
   cmd->add_option("--colorspace", args->colorspace, "Output colour space from data/ocio/config.ocio")
       ->default_val(ColorPipeline::kDefaultOutput);
   cmd->add_option("--preview", args->preview, "Also write an sRGB preview PNG through the OCIO display view");
-  cmd->add_flag("--half", args->half, "Write 16-bit half floats instead of 32-bit floats");
+  cmd->add_flag("--half", args->half, "Write 16-bit half floats instead of 32-bit floats (beauty only)");
   cmd->add_flag("-q,--quiet", args->quiet, "Only warnings and errors; no progress bar");
+  cmd->add_flag("-v,--verbose", args->verbose, "Also log every pass with its estimated error");
   cmd->callback([args] { run(*args); });
 }
 

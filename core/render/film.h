@@ -1,37 +1,106 @@
 #pragma once
-// The film: per-pixel sums of CIE XYZ estimates (box filter over each pixel's area). Each
-// pixel is written by one thread only, in sample order, so images are deterministic.
+// The film: per pixel, the sum of its CIE XYZ sample estimates (box filter over the pixel's
+// area) and their count, the running mean and spread of the samples' X, Y and Z for the pixel's
+// own error (Welford 1962, "Note on a method for calculating corrected sums of squares
+// and products", Technometrics 4(3)), and on request the first-hit AOV sums and spectral bins.
+//
+// Summation order is fixed: a pixel's samples are added one by one in sample-index order, by
+// the one thread that owns the pixel during a pass. So the film after any set of passes is a
+// pure function of each pixel's sample count, whatever the thread count, the pass split or a
+// save and reload in between (the checkpoint file holds these fields exactly).
 
+#include <cstdint>
 #include <vector>
 
+#include "base/vec.h"
+#include "render/spectral_bins.h"
 #include "spectral/rgb.h"
 
 namespace prism {
 
+// What the first surface a camera ray hits tells a compositor or denoiser.
+enum Aov : uint32_t { kAovAlbedo = 1, kAovNormal = 2, kAovDepth = 4, kAovVariance = 8, kAovSpp = 16 };
+
+// One camera sample's contribution, as the film stores it.
+struct FilmSample {
+  Xyz xyz;
+  // First hit (when AOVs are on): albedo under D65 as XYZ, shading normal, camera distance.
+  Xyz albedo{0, 0, 0};
+  Vec3f normal{0, 0, 0};
+  float depth = 0;
+  bool hit = false;
+};
+
 class Film {
  public:
-  Film(int width, int height) : width_(width), height_(height), sum_(size_t(width) * height * 3, 0.0) {}
-
-  void add(int x, int y, const Xyz& xyz) {
-    double* p = &sum_[(size_t(y) * width_ + x) * 3];
-    p[0] += xyz.x;
-    p[1] += xyz.y;
-    p[2] += xyz.z;
-  }
-
-  // Interleaved XYZ per pixel: the sums divided by the samples per pixel.
-  std::vector<float> xyz_image(int samples_per_pixel) const {
-    std::vector<float> out(sum_.size());
-    for (size_t i = 0; i < sum_.size(); ++i) out[i] = float(sum_[i] / samples_per_pixel);
-    return out;
-  }
+  // aovs: which first-hit AOVs to gather (kAovAlbedo | kAovNormal | kAovDepth; the others are
+  // derived from the sums); bins: the spectral bins to gather, or none.
+  Film(int width, int height, uint32_t aovs = 0, SpectralBins bins = {});
 
   int width() const { return width_; }
   int height() const { return height_; }
+  size_t pixel_count() const { return size_t(width_) * height_; }
+  uint32_t aovs() const { return aovs_; }
+  const SpectralBins& bins() const { return bins_; }
+
+  // Adds one sample of pixel p (index y·width + x). A NaN or Inf estimate counts as a sample
+  // of 0 (the caller counts it as invalid).
+  void add(size_t p, const FilmSample& s);
+  // Adds the spectral radiance estimate L(λ)/p(λ) of one wavelength lane to its bin. Lanes a
+  // dispersive interface terminated (pdf 0) carry no estimate and must not be added (pbrt-v4
+  // PR 550).
+  void add_spectral(size_t p, float lambda, double weighted_radiance);
+
+  uint32_t samples(size_t p) const { return count_[p]; }
+  // Mean of channel c (0, 1, 2: X, Y, Z) of pixel p's samples, and the estimated variance of that
+  // mean: s²/n, with s² the unbiased sample variance of the pixel's samples.
+  double mean(size_t p, int c) const { return mean_[p * 3 + c]; }
+  double variance_of_mean(size_t p, int c) const {
+    const uint32_t n = count_[p];
+    return n > 1 ? m2_[p * 3 + c] / (double(n - 1) * n) : 0.0;
+  }
+  // The same for the luminance Y.
+  double mean_y(size_t p) const { return mean(p, 1); }
+  double variance_of_mean(size_t p) const { return variance_of_mean(p, 1); }
+
+  // Interleaved per-pixel means (top row first) of XYZ, of the albedo XYZ and of the normal; the
+  // mean depth of the samples that hit (+inf where none did); the spectral bins' mean spectral
+  // radiance per nm, bin-major within a pixel.
+  std::vector<float> xyz_image() const;
+  std::vector<float> albedo_image() const;
+  std::vector<float> normal_image() const;
+  std::vector<float> depth_image() const;
+  std::vector<float> spectral_image() const;
+
+  // Estimated relative RMSE of the image's luminance: sqrt(mean over pixels of the variance of
+  // each pixel's mean) / mean luminance. (The true value replaces the variance by the squared
+  // error against the converged image.)
+  double estimated_rel_rmse() const;
+  // Per-pixel relative RMSE sqrt(variance of the mean) / Y, at the given quantile (0..1) over
+  // the pixels with Y > 0.
+  double pixel_rel_rmse_quantile(double q) const;
+
+  // The raw fields, in a fixed order, for checkpoint files (to write, and to read back).
+  template <typename Visit>
+  void visit_fields(Visit&& visit) const {
+    visit(sum_), visit(mean_), visit(m2_), visit(count_), visit(aov_), visit(spectral_);
+  }
+  template <typename Visit>
+  void visit_fields(Visit&& visit) {
+    visit(sum_), visit(mean_), visit(m2_), visit(count_), visit(aov_), visit(spectral_);
+  }
 
  private:
+  static constexpr int kAovFields = 8;  // albedo XYZ, normal XYZ, depth sum, hit count
+
   int width_, height_;
-  std::vector<double> sum_;
+  uint32_t aovs_;
+  SpectralBins bins_;
+  std::vector<double> sum_;        // XYZ sums
+  std::vector<double> mean_, m2_;  // Welford: XYZ means and Σ squared deviations
+  std::vector<uint32_t> count_;    // samples
+  std::vector<double> aov_;        // kAovFields sums per pixel, when AOVs are on
+  std::vector<double> spectral_;   // bins_.count() sums per pixel
 };
 
 }  // namespace prism

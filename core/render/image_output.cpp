@@ -12,35 +12,14 @@
 #include <ImfStringAttribute.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 
+#include "base/atomic_file.h"
 #include "base/error.h"
 
 namespace prism {
-
-namespace {
-
-// Writes through `write(temporary_path)`, then renames the result over `file`.
-template <typename Write>
-void write_atomically(const std::filesystem::path& file, Write&& write) {
-  const auto dir = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (!std::filesystem::is_directory(dir)) fail("{}: cannot create the folder {}", file.string(), dir.string());
-  const auto temporary = dir / fmt::format(".{}.tmp{}", file.filename().string(), getpid());
-  try {
-    write(temporary);
-    std::filesystem::rename(temporary, file);
-  } catch (const std::exception& e) {
-    std::filesystem::remove(temporary, ec);
-    fail("{}: cannot write: {}", file.string(), e.what());
-  }
-}
-
-}  // namespace
 
 void write_exr(const std::filesystem::path& file, const ExrImage& image, bool half) {
   if (image.rgb.size() != size_t(image.width) * image.height * 3) fail("{}: image size mismatch", file.string());
@@ -60,6 +39,11 @@ void write_exr(const std::filesystem::path& file, const ExrImage& image, bool ha
     const Imf::PixelType type = half ? Imf::HALF : Imf::FLOAT;
     const char* names[4] = {"R", "G", "B", "A"};
     for (const char* n : names) header.channels().insert(n, Imf::Channel(type));
+    for (const ExrChannel& c : image.channels) {
+      if (c.values.size() != size_t(image.width) * image.height)
+        throw std::runtime_error("channel " + c.name + " has the wrong size");
+      header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
+    }
 
     // Planar copies in the file's pixel type; alpha is 1 (every pixel is covered).
     const size_t pixels = size_t(image.width) * image.height;
@@ -80,6 +64,9 @@ void write_exr(const std::filesystem::path& file, const ExrImage& image, bool ha
                         : reinterpret_cast<char*>(planes_f.data() + ch * pixels);
       fb.insert(names[ch], Imf::Slice(type, base, size, size * image.width));
     }
+    for (const ExrChannel& c : image.channels)
+      fb.insert(c.name, Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(c.values.data())),
+                                   sizeof(float), sizeof(float) * image.width));
     Imf::OutputFile out(tmp.c_str(), header);
     out.setFrameBuffer(fb);
     out.writePixels(image.height);
@@ -98,33 +85,49 @@ void write_png(const std::filesystem::path& file, int width, int height, const s
   });
 }
 
-RgbImage read_exr(const std::filesystem::path& file) {
+namespace {
+
+// Reads the named channels as floats, planar (one plane per name, top row first).
+struct ExrPlanes {
+  int width, height;
+  std::vector<float> planes;
+};
+ExrPlanes read_exr_planes(const std::filesystem::path& file, const std::vector<std::string>& names) {
   try {
     Imf::InputFile in(file.c_str());
-    for (const char* name : {"R", "G", "B"})
-      if (!in.header().channels().findChannel(name)) throw std::runtime_error("it has no R, G and B channels");
+    for (const std::string& name : names)
+      if (!in.header().channels().findChannel(name)) throw std::runtime_error("it has no channel " + name);
     const Imath::Box2i dw = in.header().dataWindow();
-    RgbImage img;
-    img.width = dw.max.x - dw.min.x + 1;
-    img.height = dw.max.y - dw.min.y + 1;
+    ExrPlanes img{dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, {}};
     const size_t pixels = size_t(img.width) * img.height;
-    std::vector<float> planes(pixels * 3);
+    img.planes.resize(pixels * names.size());
     Imf::FrameBuffer fb;
-    const char* names[3] = {"R", "G", "B"};
-    for (int ch = 0; ch < 3; ++ch) {
-      char* base = reinterpret_cast<char*>(planes.data() + ch * pixels) -
+    for (size_t ch = 0; ch < names.size(); ++ch) {
+      char* base = reinterpret_cast<char*>(img.planes.data() + ch * pixels) -
                    (size_t(dw.min.x) + size_t(dw.min.y) * img.width) * sizeof(float);
       fb.insert(names[ch], Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * img.width));
     }
     in.setFrameBuffer(fb);
     in.readPixels(dw.min.y, dw.max.y);
-    img.rgb.resize(pixels * 3);
-    for (size_t p = 0; p < pixels; ++p)
-      for (int ch = 0; ch < 3; ++ch) img.rgb[p * 3 + ch] = planes[ch * pixels + p];
     return img;
   } catch (const std::exception& e) {
     fail("{}: cannot read OpenEXR image: {}", file.string(), e.what());
   }
+}
+
+}  // namespace
+
+RgbImage read_exr(const std::filesystem::path& file) {
+  const ExrPlanes in = read_exr_planes(file, {"R", "G", "B"});
+  RgbImage img{in.width, in.height, std::vector<float>(in.planes.size())};
+  const size_t pixels = size_t(img.width) * img.height;
+  for (size_t p = 0; p < pixels; ++p)
+    for (size_t ch = 0; ch < 3; ++ch) img.rgb[p * 3 + ch] = in.planes[ch * pixels + p];
+  return img;
+}
+
+std::vector<float> read_exr_channel(const std::filesystem::path& file, const std::string& name) {
+  return read_exr_planes(file, {name}).planes;
 }
 
 RgbImage read_hdr(const std::filesystem::path& file) {

@@ -19,11 +19,18 @@ struct ExrAttribute {
   std::variant<std::string, int, double> value;
 };
 
+// A channel besides R, G, B, A, named with OpenEXR's layer convention (`layer.channel`).
+struct ExrChannel {
+  std::string name;
+  std::vector<float> values;  // one per pixel, top row first
+};
+
 struct ExrImage {
   int width = 0, height = 0;
   std::vector<float> rgb;  // interleaved, top row first
   Chromaticities chromaticities;
   std::vector<ExrAttribute> metadata;
+  std::vector<ExrChannel> channels{};  // AOVs and spectral bins, always 32-bit float
 };
 
 void write_exr(const std::filesystem::path& file, const ExrImage& image, bool half);
@@ -33,6 +40,8 @@ void write_png(const std::filesystem::path& file, int width, int height, const s
 
 // Reads the R, G and B channels of an OpenEXR file (environment maps, tests, references).
 RgbImage read_exr(const std::filesystem::path& file);
+// Reads one channel of an OpenEXR file as floats, top row first.
+std::vector<float> read_exr_channel(const std::filesystem::path& file, const std::string& name);
 // Reads a Radiance RGBE (.hdr) file as linear floats.
 RgbImage read_hdr(const std::filesystem::path& file);
 

@@ -1,6 +1,5 @@
 #include "render/renderer.h"
 
-#include <atomic>
 #include <chrono>
 #include <mutex>
 
@@ -8,7 +7,8 @@
 #include "base/error.h"
 #include "base/parallel.h"
 #include "base/progress.h"
-#include "render/film.h"
+#include "render/adaptive_sampling.h"
+#include "render/pass_schedule.h"
 #include "render/whitted_integrator.h"
 #include "spectral/cie.h"
 
@@ -17,11 +17,6 @@ namespace prism {
 namespace {
 
 constexpr int kTileSize = 16;
-
-struct TileStats {
-  RayCounters rays;
-  uint64_t samples = 0, invalid = 0;
-};
 
 template <int N>
 using RadianceFn = SampledSpectrum<N> (*)(const World&, Ray, SampledWavelengths<N>&, Sampler&, const PathOptions&,
@@ -39,57 +34,138 @@ RadianceFn<N> radiance_estimator(const World& world, const RenderOptions& option
   return f.dispersion ? &path_radiance<N, false, true> : &path_radiance<N, false, false>;
 }
 
+// One camera sample: its wavelengths, the radiance they carry, and what the film keeps of it.
+template <int N>
+struct CameraSample {
+  SampledWavelengths<N> lambda;
+  SampledSpectrum<N> L;
+  Xyz xyz;
+  Ray ray;
+};
+
+// The body of the render: sample s of a pixel, from the sampler's stream for (pixel, s, seed)
+// alone, through the camera and the radiance estimator to CIE XYZ.
+template <int N>
+CameraSample<N> camera_sample(const World& world, const Camera& camera, const RenderOptions& options,
+                              RadianceFn<N> radiance, Sampler& sampler, Vec2i pixel, int s, RayCounters& rays) {
+  sampler.start_pixel_sample(pixel, s);
+  const Vec2f jitter = sampler.get_2d();
+  CameraSample<N> c{SampledWavelengths<N>::sample(sampler.get_2d()), {}, {}, {}};
+  c.ray = camera.generate_ray(float(pixel.x) + jitter.x, float(pixel.y) + jitter.y);
+  c.L = radiance(world, c.ray, c.lambda, sampler, options.path, rays);
+  c.xyz = to_xyz(c.L, c.lambda);
+  return c;
+}
+
+// What the first surface along a camera ray shows: its albedo under D65 (as XYZ, converted like
+// the image), shading normal and distance.
+template <int N>
+void first_hit(const World& world, const Ray& ray, const SampledWavelengths<N>& lambda, FilmSample& out) {
+  const auto si = world.intersect(ray);
+  if (!si) return;
+  const Material& m = *si->material;
+  SampledSpectrum<N> albedo;
+  if (const auto* d = std::get_if<DiffuseMaterial>(&m.kind)) {
+    albedo = sample(d->reflectance, lambda);
+  } else {
+    const RgbAlbedoSpectrum base(std::get<PbrMaterial>(m.kind).inputs(si->at).base_color);
+    for (int i = 0; i < N; ++i) albedo[i] = base(lambda[i]);
+  }
+  for (int i = 0; i < N; ++i) albedo[i] *= cie().d65(lambda[i]);
+  out.albedo = to_xyz(albedo, lambda);
+  out.normal = si->ns;
+  out.depth = si->t;
+  out.hit = true;
+}
+
+struct PassStats {
+  RayCounters rays;
+  uint64_t samples = 0, invalid = 0;
+};
+
+// Takes every active pixel of the tile at (x0, y0) from the samples it has to `end`.
 template <int N>
 void render_tile(const World& world, const Camera& camera, const RenderOptions& options, RadianceFn<N> radiance, int x0,
-                 int y0, Film& film, TileStats& stats) {
+                 int y0, int end, const std::vector<uint8_t>& active, Film& film, PassStats& stats) {
   Sampler sampler(options.seed, options.sampler);
+  const bool first_hits = options.aovs & (kAovAlbedo | kAovNormal | kAovDepth);
+  const int bins = film.bins().count();
   const int x1 = std::min(x0 + kTileSize, camera.width()), y1 = std::min(y0 + kTileSize, camera.height());
   for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x)
-      for (int s = 0; s < options.spp; ++s) {
-        sampler.start_pixel_sample({x, y}, s);
-        const Vec2f jitter = sampler.get_2d();
-        SampledWavelengths<N> lambda = SampledWavelengths<N>::sample(sampler.get_2d());
-        const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
-        const SampledSpectrum<N> L = radiance(world, ray, lambda, sampler, options.path, stats.rays);
-        const Xyz xyz = to_xyz(L, lambda);
+    for (int x = x0; x < x1; ++x) {
+      const size_t p = size_t(y) * camera.width() + x;
+      if (!active.empty() && !active[p]) continue;
+      for (int s = int(film.samples(p)); s < end; ++s) {
+        const CameraSample<N> c = camera_sample<N>(world, camera, options, radiance, sampler, {x, y}, s, stats.rays);
+        FilmSample fs{c.xyz};
+        if (first_hits) first_hit<N>(world, c.ray, c.lambda, fs);
         ++stats.samples;
-        if (std::isfinite(xyz.x) && std::isfinite(xyz.y) && std::isfinite(xyz.z)) {
-          film.add(x, y, xyz);
-        } else {
-          ++stats.invalid;
-        }
+        if (!(std::isfinite(c.xyz.x) && std::isfinite(c.xyz.y) && std::isfinite(c.xyz.z))) ++stats.invalid;
+        film.add(p, fs);
+        if (bins)
+          for (int i = 0; i < N; ++i)
+            if (c.lambda.pdf()[i] > 0) film.add_spectral(p, c.lambda[i], double(c.L[i]) / (c.lambda.pdf()[i] * N));
       }
+    }
 }
 
 template <int N>
-RenderResult render_with(const World& world, const Camera& camera, const RenderOptions& options) {
+RenderResult render_with(const World& world, const Camera& camera, const RenderOptions& options,
+                         const RenderControl& control, std::optional<RenderState> resume) {
   const RadianceFn<N> radiance = radiance_estimator<N>(world, options);
-  Film film(camera.width(), camera.height());
+  RenderResult result{resume ? std::move(*resume)
+                             : RenderState{Film(camera.width(), camera.height(), options.aovs, options.spectral_bins)}};
+  RenderState& state = result.state;
   const int tiles_x = (camera.width() + kTileSize - 1) / kTileSize;
   const int tiles_y = (camera.height() + kTileSize - 1) / kTileSize;
-  Progress progress("render", int64_t(tiles_x) * tiles_y, options.progress);
-  RenderStats stats;
+  const int passes = pass_count(options.spp);
+  Progress progress("render", int64_t(passes - std::min(state.passes, passes)) * tiles_x * tiles_y, options.progress);
   std::mutex stats_mutex;
+  std::vector<uint8_t> active;  // empty: all pixels
   const auto start = std::chrono::steady_clock::now();
-  {
-    ThreadLimit limit(options.threads);
+  const double seconds_before = state.stats.seconds;
+  ThreadLimit limit(options.threads);
+  while (state.passes < passes) {
+    const int end = pass_end(state.passes, options.spp);
+    if (options.noise_threshold > 0) {
+      find_unconverged(state.film, options.noise_threshold, active);
+      if (std::find(active.begin(), active.end(), 1) == active.end()) {  // every pixel converged
+        state.passes = passes;
+        break;
+      }
+    }
     parallel_for(int64_t(tiles_x) * tiles_y, [&](int64_t tile) {
-      TileStats ts;
+      PassStats ps;
       render_tile<N>(world, camera, options, radiance, int(tile % tiles_x) * kTileSize, int(tile / tiles_x) * kTileSize,
-                     film, ts);
+                     end, active, state.film, ps);
       {
         std::lock_guard lock(stats_mutex);
-        stats.rays += ts.rays;
-        stats.samples += ts.samples;
-        stats.invalid_samples += ts.invalid;
+        state.stats.rays += ps.rays;
+        state.stats.samples += ps.samples;
+        state.stats.invalid_samples += ps.invalid;
       }
       progress.advance();
     });
+    state.stats.seconds = seconds_before + seconds_since(start);
+    if (control.after_pass) {
+      const size_t active_pixels =
+          active.empty() ? state.film.pixel_count() : size_t(std::count(active.begin(), active.end(), 1));
+      control.after_pass({state.passes, end, active_pixels}, state);
+    }
+    // Stop requests take effect between passes, so that every pixel has whole passes.
+    if (++state.passes == passes) break;
+    if (control.stop && control.stop->load()) {
+      result.interrupted = true;
+      break;
+    }
+    if (options.time_limit > 0 && seconds_since(start) >= options.time_limit) {
+      result.timed_out = true;
+      break;
+    }
   }
   progress.finish();
-  stats.seconds = seconds_since(start);
-  return {camera.width(), camera.height(), film.xyz_image(options.spp), stats};
+  state.stats.seconds = seconds_before + seconds_since(start);
+  return result;
 }
 
 }  // namespace
@@ -102,16 +178,22 @@ std::string RenderStats::summary() const {
       samples, seconds, samples_per_second(), rays.primary, rays.secondary, rays.shadow, invalid_samples);
 }
 
-RenderResult render(const World& world, const Camera& camera, const RenderOptions& options) {
+RenderResult render(const World& world, const Camera& camera, const RenderOptions& options,
+                    const RenderControl& control, std::optional<RenderState> resume) {
   if (options.spp <= 0) fail("samples per pixel must be positive (got {})", options.spp);
+  if (!(options.noise_threshold >= 0))
+    fail("the noise threshold must be non-negative (got {})", options.noise_threshold);
+  if (resume && (resume->film.width() != camera.width() || resume->film.height() != camera.height()))
+    fail("the state to resume is {}x{}, the camera {}x{}", resume->film.width(), resume->film.height(), camera.width(),
+         camera.height());
   cie();  // load the colour tables before the threads start, so errors surface here
   switch (options.wavelengths) {
     case 1:
-      return render_with<1>(world, camera, options);
+      return render_with<1>(world, camera, options, control, std::move(resume));
     case 4:
-      return render_with<4>(world, camera, options);
+      return render_with<4>(world, camera, options, control, std::move(resume));
     case 8:
-      return render_with<8>(world, camera, options);
+      return render_with<8>(world, camera, options, control, std::move(resume));
     default:
       fail("wavelengths per path must be 1, 4 or 8 (got {})", options.wavelengths);
   }

@@ -25,7 +25,7 @@ std::vector<float> render_xyz(const Scene& scene, const CameraDesc& camera, cons
   options.sampler = SamplerKind::independent;
   options.path.max_depth = 8;
   options.progress = false;
-  return render(world, Camera(camera, 48, 36), options).xyz;
+  return render(world, Camera(camera, 48, 36), options).state.film.xyz_image();
 }
 
 bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {

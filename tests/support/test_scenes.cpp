@@ -126,9 +126,10 @@ void check_mean(const TestRender& img, int x0, int y0, int x1, int y1, double ex
 TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, int height, RenderOptions options) {
   const World world(scene);
   options.progress = false;
-  RenderResult r = render(world, Camera(camera, width, height), options);
-  ColorPipeline::standard().convert(ColorPipeline::kXyz, ColorPipeline::kDefaultOutput, r.xyz.data(), r.xyz.size() / 3);
-  return {r.width, r.height, std::move(r.xyz), r.stats};
+  const RenderResult r = render(world, Camera(camera, width, height), options);
+  std::vector<float> rgb = r.state.film.xyz_image();
+  ColorPipeline::standard().convert(ColorPipeline::kXyz, ColorPipeline::kDefaultOutput, rgb.data(), rgb.size() / 3);
+  return {r.width(), r.height(), std::move(rgb), r.stats()};
 }
 
 TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, int height, int spp, int max_depth,

@@ -1,0 +1,34 @@
+#pragma once
+// Adaptive sampling: after each pass, pixels whose estimated error is below the noise
+// threshold T stop taking samples.
+//
+// A pixel's error is the largest over X, Y and Z (so that colour noise counts, not only luminance
+// noise) of the standard error of the pixel's mean, sqrt(Var[X̂]), divided by sqrt(X · X̄), X the
+// pixel's and X̄ the image's mean. This is Cycles' measure (error over
+// the square root of the pixel's value: the noise a viewer sees through a display curve, so dark
+// pixels are not chased to a relative precision nobody sees) made independent of exposure by Ȳ:
+// scaling the image leaves it unchanged. A pixel stops only when the largest error in its 3×3
+// neighbourhood is below T (as Cycles filters its convergence mask), which makes stopping on a
+// lucky low variance estimate rarer.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "render/film.h"
+
+namespace prism {
+
+// Samples every pixel takes before its error is trusted: at least 16 (the estimated standard
+// error is then itself within ~18%, 1/sqrt(2(n-1)), for well-behaved pixels), growing as 4/sqrt(T)
+// so that stricter thresholds also see rarer events: by the rule of three, an effect a sample
+// shows with probability 3/n is seen at least once in n samples with 95% confidence.
+int adaptive_min_samples(double threshold);
+
+// The error of pixel p as defined above, given the image's mean X, Y, Z.
+double adaptive_error(const Film& film, size_t p, const std::array<double, 3>& image_mean);
+
+// active[p] = 1 where pixel p still needs samples under threshold T.
+void find_unconverged(const Film& film, double threshold, std::vector<uint8_t>& active);
+
+}  // namespace prism

@@ -1,0 +1,20 @@
+#pragma once
+// Checkpoint files: a render's state (the film's sums, Welford terms and sample counts exactly,
+// the passes done, the statistics) with a fingerprint of everything that shapes the image, so
+// that `--resume` continues a render only with the same scene and options and its result equals
+// the uninterrupted render bit for bit. Written atomically (atomic_file.h).
+
+#include <filesystem>
+#include <string>
+
+#include "render/renderer.h"
+
+namespace prism {
+
+void save_checkpoint(const std::filesystem::path& file, const RenderState& state, const std::string& fingerprint);
+
+// Loads the state saved in `file`; fails naming the file if it is not a checkpoint, is damaged,
+// or was written for another fingerprint.
+RenderState load_checkpoint(const std::filesystem::path& file, const std::string& fingerprint);
+
+}  // namespace prism

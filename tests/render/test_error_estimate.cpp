@@ -1,0 +1,79 @@
+// The film's own error estimate against the true error: on scenes whose answer is known exactly,
+// and on the default scene against a long reference render. The estimated relative RMSE must be
+// within 20% of the true one (with independent samples, for which it is exact in expectation).
+
+#include <catch2/catch.hpp>
+
+#include "scene/gltf_loader.h"
+#include "support/test_scenes.h"
+
+using namespace prism;
+
+namespace {
+
+Film render_film(const Scene& scene, const CameraDesc& camera, int size, int spp, uint64_t seed, int max_depth = 64) {
+  const World world(scene);
+  RenderOptions o;
+  o.spp = spp;
+  o.seed = seed;
+  o.path.max_depth = max_depth;
+  // The estimate s²/n is the variance of the mean for independent samples; Owen-scrambled Sobol
+  // samples are negatively correlated, so there it is an upper bound (README).
+  o.sampler = SamplerKind::independent;
+  o.progress = false;
+  return render(world, Camera(camera, size, size), o).state.film;
+}
+
+// sqrt(mean (Y − Y_true)²) / mean Y_true, with the reference's own estimated variance taken out
+// of the squared error when the truth is itself a render.
+double true_rel_rmse(const Film& film, const std::function<double(size_t)>& truth,
+                     const std::function<double(size_t)>& truth_variance) {
+  double squared = 0, mean = 0;
+  for (size_t p = 0; p < film.pixel_count(); ++p) {
+    squared += sqr(film.mean_y(p) - truth(p)) - truth_variance(p);
+    mean += truth(p);
+  }
+  return std::sqrt(squared / film.pixel_count()) / (mean / film.pixel_count());
+}
+
+void check_estimate(const Film& film, double truth) {
+  const double estimate = film.estimated_rel_rmse();
+  INFO("estimated relative RMSE " << estimate << ", true " << truth);
+  CHECK(truth > 0.005);  // a real error to estimate, far above the tables' own accuracy
+  CHECK(estimate == Approx(truth).epsilon(0.2));
+}
+
+}  // namespace
+
+TEST_CASE("error estimate: a grey sphere filling the image under a uniform sky (Y = albedo exactly)") {
+  Scene scene;
+  scene.materials.push_back(test::diffuse({0.5f, 0.5f, 0.5f}));
+  test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 3, 0));
+  scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
+  // The sphere subtends ±11.5°; a 12° field of view sees only the sphere.
+  const Film film = render_film(scene, test::look_at({0, 0, 5.f}, {0, 0, 0}, 12.f), 48, 4, 11);
+  check_estimate(film, true_rel_rmse(
+                           film, [](size_t) { return 0.5; }, [](size_t) { return 0.0; }));
+}
+
+TEST_CASE("error estimate: inside a closed emitting sphere (Y = Le / (1 - albedo) exactly)") {
+  Scene scene;
+  Material m = test::diffuse({0.5f, 0.5f, 0.5f});
+  m.emission = RgbIlluminantSpectrum(Rgb{0.5f, 0.5f, 0.5f});
+  m.double_sided = true;
+  scene.materials.push_back(m);
+  test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 2, 0));
+  const Film film = render_film(scene, test::look_at({0, 0, 0.3f}, {0, 0, -1}, 60.f), 48, 8, 12, 1000);
+  check_estimate(film, true_rel_rmse(
+                           film, [](size_t) { return 1.0; }, [](size_t) { return 0.0; }));
+}
+
+TEST_CASE("error estimate: the default scene against a long reference") {
+  const Scene scene = load_gltf(PRISM_SOURCE_DIR "/data/scenes/cornell.gltf");
+  REQUIRE(!scene.cameras.empty());
+  const Film reference = render_film(scene, scene.cameras[0], 32, 1024, 100);
+  const Film film = render_film(scene, scene.cameras[0], 32, 16, 13);
+  check_estimate(film, true_rel_rmse(
+                           film, [&](size_t p) { return reference.mean_y(p); },
+                           [&](size_t p) { return reference.variance_of_mean(p); }));
+}

@@ -1,0 +1,214 @@
+// Progressive rendering: passes, stops and resumes change nothing but the sample counts, bit for
+// bit, at any thread count; the film's own error estimate matches the true error; adaptive
+// sampling puts samples where the noise is without moving the image's mean.
+
+#include <catch2/catch.hpp>
+#include <cstring>
+#include <map>
+
+#include "materials/catalogue.h"
+#include "render/checkpoint.h"
+#include "render/pass_schedule.h"
+#include "scene/gltf_loader.h"
+#include "support/test_scenes.h"
+
+using namespace prism;
+
+namespace {
+
+// A scene made ready to render, with its camera.
+struct Setup {
+  Scene scene;
+  std::unique_ptr<World> world;
+  std::unique_ptr<Camera> camera;
+
+  Setup(Scene s, const CameraDesc& c, int width, int height)
+      : scene(std::move(s)),
+        world(std::make_unique<World>(scene)),
+        camera(std::make_unique<Camera>(c, width, height)) {}
+
+  RenderResult render(RenderOptions options, const RenderControl& control = {},
+                      std::optional<RenderState> resume = {}) const {
+    options.progress = false;
+    return prism::render(*world, *camera, options, control, std::move(resume));
+  }
+};
+
+// A glass sphere above a diffuse floor, lit by a small bright quad above it (a caustic on the
+// floor) and a dim uniform sky that fills the top of the image (a flat background).
+Setup caustic_scene(int width = 32, int height = 24) {
+  Scene scene;
+  scene.materials.push_back(test::diffuse({0.8f, 0.8f, 0.8f}, "floor"));
+  scene.materials.push_back(Material{.name = "glass", .kind = PbrMaterial::glass(Dielectric(ConstantIor{1.5f}))});
+  Material lamp = test::diffuse({0, 0, 0}, "lamp");
+  lamp.emission = RgbIlluminantSpectrum(Rgb{400, 400, 400});
+  scene.materials.push_back(lamp);
+  test::add_mesh(scene, test::make_quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, 0));
+  test::add_mesh(scene, test::make_icosphere({0, 0.9f, 0}, 0.5f, 3, 1));
+  test::add_mesh(scene, test::make_quad({-0.1f, 3, -0.1f}, {0.2f, 0, 0}, {0, 0, 0.2f}, 2));
+  scene.environment = RgbIlluminantSpectrum(Rgb{0.1f, 0.1f, 0.1f});
+  return Setup(std::move(scene), test::look_at({0, 1.6f, 3.5f}, {0, 0.5f, 0}, 50.f), width, height);
+}
+
+// Every field of a film, as bytes: two films are the same render only if these are equal.
+std::vector<char> film_bytes(const Film& film) {
+  std::vector<char> bytes;
+  film.visit_fields([&](const auto& v) {
+    const char* p = reinterpret_cast<const char*>(v.data());
+    bytes.insert(bytes.end(), p, p + v.size() * sizeof(v[0]));
+  });
+  return bytes;
+}
+
+RenderOptions options_with(int spp, int threads, uint64_t seed = 3) {
+  RenderOptions o;
+  o.spp = spp;
+  o.threads = threads;
+  o.seed = seed;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("the pass schedule is fixed: 1, 2, 4, 8, 16, then every 16, cut at the total") {
+  CHECK(pass_end(0, 100) == 1);
+  CHECK(pass_end(3, 100) == 8);
+  CHECK(pass_end(4, 100) == 16);
+  CHECK(pass_end(5, 100) == 32);
+  CHECK(pass_end(9, 100) == 96);
+  CHECK(pass_end(10, 100) == 100);
+  CHECK(pass_count(100) == 11);
+  CHECK(pass_count(1) == 1);
+  CHECK(pass_count(16) == 5);
+  for (int spp : {1, 5, 16, 17, 64})
+    for (int k = 0; k + 1 < pass_count(spp); ++k) CHECK(pass_end(k, spp) == pass_end(k, 1000));
+}
+
+TEST_CASE("progressive renders are the same bit for bit at 1 and 2 threads, with AOVs and spectral bins") {
+  const Setup s = caustic_scene();
+  RenderOptions o = options_with(20, 1);
+  o.aovs = kAovAlbedo | kAovNormal | kAovDepth;
+  o.spectral_bins = SpectralBins::uniform(8);
+  const RenderResult one = s.render(o);
+  o.threads = 2;
+  const RenderResult two = s.render(o);
+  CHECK(one.state.passes == pass_count(20));
+  CHECK(film_bytes(one.state.film) == film_bytes(two.state.film));
+  for (size_t p = 0; p < one.state.film.pixel_count(); ++p) REQUIRE(one.state.film.samples(p) == 20);
+}
+
+TEST_CASE("a render stopped after any pass, by request or time limit, equals the straight render of its samples") {
+  const Setup s = caustic_scene();
+  for (int threads : {1, 2}) {
+    INFO(threads << " threads");
+    // Stopped by request after the fourth pass (8 samples).
+    std::atomic<bool> stop{false};
+    RenderControl control{&stop, [&](const PassReport& pass, const RenderState&) { stop = pass.pass == 3; }};
+    const RenderResult stopped = s.render(options_with(64, threads), control);
+    CHECK(stopped.interrupted);
+    CHECK(stopped.state.passes == 4);
+    CHECK(film_bytes(stopped.state.film) == film_bytes(s.render(options_with(8, 3 - threads)).state.film));
+
+    // A time limit every pass reaches stops after the first pass.
+    RenderOptions limited = options_with(64, threads);
+    limited.time_limit = 1e-9;
+    const RenderResult timed = s.render(limited);
+    CHECK(timed.timed_out);
+    CHECK(timed.state.passes == 1);
+    CHECK(film_bytes(timed.state.film) == film_bytes(s.render(options_with(1, 3 - threads)).state.film));
+  }
+}
+
+TEST_CASE("a render resumed from a checkpoint file equals the uninterrupted render bit for bit") {
+  const Setup s = caustic_scene();
+  const auto file = test::temp_dir("checkpoint") / "state.checkpoint";
+  for (int threads : {1, 2}) {
+    INFO(threads << " threads");
+    RenderOptions o = options_with(24, threads);
+    o.aovs = kAovDepth;
+    o.spectral_bins = SpectralBins::uniform(4);
+    std::atomic<bool> stop{false};
+    const RenderResult first =
+        s.render(o, {&stop, [&](const PassReport& pass, const RenderState&) { stop = pass.pass == 2; }});
+    REQUIRE(first.state.passes == 3);
+    save_checkpoint(file, first.state, "fingerprint");
+    CHECK_THROWS_WITH(load_checkpoint(file, "other"), Catch::Contains("another scene or other options"));
+    const RenderResult resumed = s.render(o, {}, load_checkpoint(file, "fingerprint"));
+    CHECK_FALSE(resumed.interrupted);
+    CHECK(resumed.state.stats.samples == uint64_t(24) * 32 * 24);
+    CHECK(film_bytes(resumed.state.film) == film_bytes(s.render(o).state.film));
+  }
+  // A damaged file fails with a clear message instead of resuming from garbage.
+  std::filesystem::resize_file(file, std::filesystem::file_size(file) - 7);
+  CHECK_THROWS_WITH(load_checkpoint(file, "fingerprint"), Catch::Contains("truncated or damaged"));
+}
+
+TEST_CASE("adaptive sampling: every pixel equals the straight render of its own sample count, at 1 and 2 threads") {
+  const Setup s = caustic_scene();
+  RenderOptions o = options_with(128, 1);
+  o.noise_threshold = 0.1;
+  const RenderResult adaptive = s.render(o);
+  o.threads = 2;
+  CHECK(film_bytes(s.render(o).state.film) == film_bytes(adaptive.state.film));
+  const Film& film = adaptive.state.film;
+  std::map<uint32_t, Film> straight;
+  for (size_t p = 0; p < film.pixel_count(); ++p) {
+    const uint32_t n = film.samples(p);
+    if (!straight.count(n)) straight.emplace(n, s.render(options_with(int(n), 2)).state.film);
+    const Film& f = straight.at(n);
+    REQUIRE(f.samples(p) == n);
+    REQUIRE(f.mean_y(p) == film.mean_y(p));
+    REQUIRE(f.variance_of_mean(p) == film.variance_of_mean(p));
+    REQUIRE(f.xyz_image()[p * 3] == film.xyz_image()[p * 3]);
+  }
+  CHECK(straight.size() > 1);  // the pixels did not all take the same number of samples
+}
+
+TEST_CASE("adaptive sampling spends fewer samples on a flat background than on a caustic, keeping the mean") {
+  const Setup s = caustic_scene(48, 36);
+  const int max_spp = 256;
+  RenderOptions o = options_with(max_spp, 0);
+  const RenderResult uniform = s.render(o);
+  o.noise_threshold = 0.05;
+  const RenderResult adaptive = s.render(o);
+  const Film &u = uniform.state.film, &a = adaptive.state.film;
+
+  // Flat background: the top six rows, which see only the sky; noisy: the tenth of the pixels
+  // with the largest variance in the uniform render (the caustic, the lit floor, the sphere's
+  // refractions of them and of the lamp).
+  std::vector<std::pair<double, size_t>> errors;
+  double flat_spp = 0, noisy_spp = 0;
+  int flat = 0;
+  for (size_t p = 0; p < u.pixel_count(); ++p) {
+    if (p < 6 * size_t(u.width())) {
+      flat_spp += a.samples(p);
+      ++flat;
+    }
+    errors.push_back({u.variance_of_mean(p), p});
+  }
+  std::sort(errors.rbegin(), errors.rend());
+  const size_t noisy = errors.size() / 10;
+  for (size_t i = 0; i < noisy; ++i) noisy_spp += a.samples(errors[i].second);
+  REQUIRE(flat > 20);
+  flat_spp /= flat;
+  noisy_spp /= double(noisy);
+  INFO("mean spp: flat background " << flat_spp << ", noisiest tenth " << noisy_spp);
+  // The sky is flat but for the colour noise of its sampled wavelengths: it stops after a few
+  // passes; the caustic never reaches the threshold and takes the maximum.
+  CHECK(flat_spp < max_spp / 3);
+  CHECK(noisy_spp > 0.95 * max_spp);
+  CHECK(adaptive.stats().samples < 0.7 * uniform.stats().samples);
+
+  // The image mean: the adaptive render stops pixels early, so it differs from the uniform one
+  // by the noise of the samples it skipped, at most (a bias would show beyond that).
+  double mean_u = 0, mean_a = 0, variance = 0;
+  for (size_t p = 0; p < u.pixel_count(); ++p) {
+    mean_u += u.mean_y(p);
+    mean_a += a.mean_y(p);
+    variance += a.variance_of_mean(p) + u.variance_of_mean(p);
+  }
+  const double n = double(u.pixel_count());
+  INFO("mean Y uniform " << mean_u / n << ", adaptive " << mean_a / n << ", standard error "
+                         << std::sqrt(variance) / n);
+  CHECK(std::abs(mean_a - mean_u) / n < 4 * std::sqrt(variance) / n);
+}
