@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   prism::add_render_command(app);
   prism::add_merge_command(app);
+  prism::add_farm_command(app);
   prism::add_fresnel_command(app);
   prism::add_converge_command(app);
   prism::add_bench_command(app);
