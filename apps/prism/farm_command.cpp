@@ -3,7 +3,8 @@
 // and a merge job that runs after all of them succeed (--dependency=afterok), and submits both
 // with sbatch, printing their job ids. DIR must be on a filesystem every node sees (as Slurm
 // sites have); the scene path and this executable are used by absolute path. Submitting again
-// renders only the parts whose files are missing. --dry-run prints the scripts instead.
+// renders only the parts whose files are missing (and cancels the previous merge job, whose
+// dependency a failed part left unmet). --dry-run prints the scripts instead.
 
 #include <cstdio>
 #include <filesystem>
@@ -104,7 +105,16 @@ void run(const FarmArgs& args) {
   } else {
     std::printf("all %d part files exist: submitting only the merge\n", args.parts);
   }
+  // A merge job left from an earlier submission whose parts failed waits for a dependency that
+  // can never be met: the new merge job replaces it.
+  if (std::ifstream previous(dir / "merge.jobid"); previous) {
+    std::string id;
+    if (previous >> id && id.find_first_not_of("0123456789") == std::string::npos)
+      if (std::system(("scancel " + id + " 2>/dev/null").c_str()) == 0)
+        std::printf("cancelled the earlier merge job %s\n", id.c_str());
+  }
   const std::string merge_id = submit(write("merge.sbatch", merge_script), dependency);
+  write("merge.jobid", merge_id + "\n");
   std::printf("submitted merge job %s: writes %s\n", merge_id.c_str(), (dir / "image.exr").c_str());
 }
 
@@ -123,8 +133,7 @@ void add_farm_command(CLI::App& app) {
   cmd->add_option("--spp", args->spp, "Samples per pixel of the whole render")
       ->default_val(16)
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--out", args->out, "Directory on the shared filesystem for parts, logs and image.exr")
-      ->required();
+  cmd->add_option("--out", args->out, "Directory on the shared filesystem for parts, logs and image.exr")->required();
   cmd->add_flag("--dry-run", args->dry_run, "Print the batch scripts instead of submitting them");
   cmd->allow_extras();
   cmd->callback([args, cmd] {
