@@ -13,7 +13,7 @@
 namespace prism {
 
 template <int N>
-using Bsdf = std::variant<DiffuseBsdf<N>, ConductorBsdf<N>, DielectricBsdf<N>, PbrBsdf<N>>;
+using Bsdf = std::variant<DiffuseBsdf<N>, ConductorBsdf<N>, DielectricBsdf<N>, PbrBsdf<N>, LayeredBsdf<N>>;
 
 template <int N>
 SampledSpectrum<N> bsdf_f(const Bsdf<N>& b, const Vec3f& wo, const Vec3f& wi) {

@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
+#include <type_traits>
 
 #include "base/vec.h"
 #include "spectral/sampled_spectrum.h"
@@ -33,7 +35,7 @@ struct DeltaLobe {
 
 template <int N>
 struct DeltaLobes {
-  std::array<DeltaLobe<N>, 3> lobes;
+  std::array<DeltaLobe<N>, 4> lobes;  // a coat, a metal, a dielectric's reflection and transmission
   int count = 0;
 
   void add(const DeltaLobe<N>& l) {
@@ -46,6 +48,16 @@ struct DeltaLobes {
   const DeltaLobe<N>* begin() const { return lobes.data(); }
   const DeltaLobe<N>* end() const { return lobes.data() + count; }
 };
+
+// What a lobe compiled without an optional part holds in its place (with [[no_unique_address]],
+// nothing): the glTF extensions' parts are compiled only into the lobes of materials that use them.
+struct Absent {
+  constexpr Absent() = default;
+  template <typename T>
+  constexpr Absent(const T&) {}
+};
+template <bool Present, typename T>
+using OptionalPart = std::conditional_t<Present, std::optional<T>, Absent>;
 
 inline float cos_theta(const Vec3f& w) { return w.z; }
 inline float abs_cos_theta(const Vec3f& w) { return std::abs(w.z); }

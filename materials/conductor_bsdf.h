@@ -3,28 +3,35 @@
 //   f(wo, wi) = D(m) F(wo·m) G(wo, wi) / (4 |cos θ_o cos θ_i|),  m = normalize(wo + wi),
 // with the exact complex Fresnel reflectance of n(λ) + ik(λ) per lane; a mirror when smooth.
 // Single scattering: light that bounces between microfacets is lost (as in Cycles 3.x).
-// Two-sided: a direction below the surface sees the same lobe, mirrored.
+// Two-sided: a direction below the surface sees the same lobe, mirrored. An optional thin film
+// (KHR_materials_iridescence) over the metal replaces F by the film's exact reflectance
+// (compiled in with Extensions = true).
 
 #include <optional>
 
 #include "materials/bsdf_sample.h"
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"
+#include "materials/thin_film.h"
 
 namespace prism {
 
-template <int N>
+template <int N, bool Extensions = false>
 class ConductorBsdf {
  public:
   // n, k: the metal's complex index relative to the surrounding medium, per lane.
-  ConductorBsdf(float alpha, const SampledSpectrum<N>& n, const SampledSpectrum<N>& k)
-      : distribution_(alpha), smooth_(TrowbridgeReitz::effectively_smooth(alpha)), n_(n), k_(k) {}
+  ConductorBsdf(float alpha, const SampledSpectrum<N>& n, const SampledSpectrum<N>& k,
+                const OptionalPart<Extensions, FilmLanes<N>>& film = {})
+      : distribution_(alpha), smooth_(TrowbridgeReitz::effectively_smooth(alpha)), n_(n), k_(k), film_(film) {}
 
   bool is_specular() const { return smooth_; }
 
   SampledSpectrum<N> reflectance(float cos_theta) const {
     SampledSpectrum<N> r;
     for (int i = 0; i < N; ++i) r[i] = fresnel_conductor(cos_theta, n_[i], k_[i]);
+    if constexpr (Extensions)
+      if (film_)
+        for (int i = 0; i < N; ++i) r[i] = film_->reflectance(i, std::abs(cos_theta), {n_[i], k_[i]}, r[i]);
     return r;
   }
 
@@ -72,6 +79,7 @@ class ConductorBsdf {
   TrowbridgeReitz distribution_;
   bool smooth_;
   SampledSpectrum<N> n_, k_;
+  [[no_unique_address]] OptionalPart<Extensions, FilmLanes<N>> film_;
 };
 
 }  // namespace prism

@@ -11,12 +11,16 @@
 // `transmission` ∈ [0, 1] weights the transmitted lobe (glTF's transmissionFactor; the rest
 // of the light goes to a diffuse base elsewhere); `tint` colours transmitted light; `specular`
 // scales the reflectance, s·F, leaving 1 − s·F to pass (KHR_materials_specular's factor).
+// Per-lane reflectance (SpectralReflectance): KHR_materials_specular's colour, as the index η_λ
+// whose exact F0 is the coloured one (F90 stays s), and a thin film (KHR_materials_iridescence)
+// over the interface (compiled in with Extensions = true); without them every lane reflects alike.
 
 #include <optional>
 
 #include "materials/bsdf_sample.h"
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"
+#include "materials/thin_film.h"
 
 namespace prism {
 
@@ -27,47 +31,72 @@ struct Transmission {
   float eta;                  // relative index crossed (1 for a thin wall)
 };
 
+// Per-lane changes to a dielectric's reflectance: the index its Fresnel reflectance follows
+// (not the one that refracts), and a film over it.
 template <int N>
+struct SpectralReflectance {
+  std::optional<SampledSpectrum<N>> eta;
+  std::optional<FilmLanes<N>> film;
+};
+
+template <int N, bool Extensions = false>
 class DielectricBsdf {
  public:
   // eta = n_back / n_front (the index behind the shading normal over the one in front), one
   // value for all lanes: a λ-dependent index terminates the secondary wavelengths first.
   DielectricBsdf(float alpha, float eta, const SampledSpectrum<N>& tint, bool thin, float transmission = 1.f,
-                 float specular = 1.f)
+                 float specular = 1.f, const OptionalPart<Extensions, SpectralReflectance<N>>& lanes = {})
       : distribution_(alpha),
         smooth_(TrowbridgeReitz::effectively_smooth(alpha) || eta == 1),
         eta_(eta),
         tint_(tint),
         thin_(thin),
         transmission_(transmission),
-        specular_(specular) {}
+        specular_(specular),
+        lanes_(lanes) {}
 
   bool is_specular() const { return smooth_; }
 
-  // Fresnel reflectance at a (micro)facet with cos θ = cos_theta (signed: < 0 from behind).
-  float fresnel(float cos_theta) const {
-    if (!thin_) return specular_ * fresnel_dielectric(cos_theta, eta_);
-    const float R = specular_ * fresnel_dielectric(std::abs(cos_theta), eta_);
-    return R < 1 ? R + sqr(1 - R) * R / (1 - R * R) : R;
+  // Fresnel reflectance at a (micro)facet with cos θ = cos_theta (signed: < 0 from behind), per
+  // lane; the thin wall sums the inter-reflections of its two faces.
+  SampledSpectrum<N> fresnel(float cos_theta) const {
+    const float c = thin_ ? std::abs(cos_theta) : cos_theta;
+    if constexpr (Extensions)
+      if (lanes_) {
+        SampledSpectrum<N> R;
+        for (int i = 0; i < N; ++i) {
+          const float eta = lanes_->eta ? (*lanes_->eta)[i] : eta_;
+          float r = fresnel_dielectric(c, eta);
+          if (lanes_->film) r = lanes_->film->reflectance(i, c, eta, r);
+          R[i] = wall(specular_ * r);
+        }
+        return R;
+      }
+    return SampledSpectrum<N>(wall(specular_ * fresnel_dielectric(c, eta_)));
+  }
+  // The share that picks reflection over transmission when sampling: the reflectance of every
+  // lane alike (a per-lane one would cost a film per pdf; any choice is unbiased).
+  float selection(float cos_theta) const {
+    return wall(specular_ * fresnel_dielectric(thin_ ? std::abs(cos_theta) : cos_theta, eta_));
   }
 
   // Smooth interface: the reflected share, and the transmitted direction and share.
-  float reflectance(const Vec3f& wo) const { return fresnel(cos_theta(wo)); }
+  SampledSpectrum<N> reflectance(const Vec3f& wo) const { return fresnel(cos_theta(wo)); }
   std::optional<Transmission<N>> transmission(const Vec3f& wo) const { return transmission(wo, reflectance(wo)); }
-  std::optional<Transmission<N>> transmission(const Vec3f& wo, float R) const {  // R = reflectance(wo)
-    const float T = 1 - R;
-    if (T <= 0 || transmission_ <= 0) return std::nullopt;
-    if (thin_) return Transmission<N>{-wo, tint_ * (transmission_ * T), 1.f};
+  std::optional<Transmission<N>> transmission(const Vec3f& wo, const SampledSpectrum<N>& R) const {
+    if (transmission_ <= 0 || R.min() >= 1) return std::nullopt;
+    const SampledSpectrum<N> T = (SampledSpectrum<N>(1.f) - R) * transmission_;
+    if (thin_) return Transmission<N>{-wo, tint_ * T, 1.f};
     const auto refraction = refract(wo, {0, 0, 1}, eta_);
     if (!refraction) return std::nullopt;
-    return Transmission<N>{refraction->wt, tint_ * (transmission_ * T / sqr(refraction->eta_p)), refraction->eta_p};
+    return Transmission<N>{refraction->wt, tint_ * T / sqr(refraction->eta_p), refraction->eta_p};
   }
 
   DeltaLobes<N> delta_lobes(const Vec3f& wo) const {
     DeltaLobes<N> d;
     if (!smooth_ || wo.z == 0) return d;
-    const float R = reflectance(wo);
-    d.add({Vec3f(-wo.x, -wo.y, wo.z), SampledSpectrum<N>(R), false, 1.f});
+    const SampledSpectrum<N> R = reflectance(wo);
+    d.add({Vec3f(-wo.x, -wo.y, wo.z), R, false, 1.f});
     if (const auto t = transmission(wo, R)) d.add({t->wi, t->weight, true, t->eta});
     return d;
   }
@@ -75,22 +104,23 @@ class DielectricBsdf {
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
     const auto h = half_vector(wo, wi);
     if (!h) return SampledSpectrum<N>(0.f);
-    const float F = fresnel(dot(wo, h->wm));
+    const SampledSpectrum<N> F = fresnel(dot(wo, h->wm));
     const float D = distribution_.D(h->wm);
-    if (h->reflection) return SampledSpectrum<N>(D * distribution_.G(wo, wi) * F / std::abs(4 * wi.z * wo.z));
+    if (h->reflection) return F * (D * distribution_.G(wo, wi) / std::abs(4 * wi.z * wo.z));
+    const SampledSpectrum<N> T = tint_ * (SampledSpectrum<N>(1.f) - F);
     if (thin_) {
       const Vec3f mirrored(wi.x, wi.y, -wi.z);
-      return tint_ * (transmission_ * D * distribution_.G(wo, mirrored) * (1 - F) / std::abs(4 * wi.z * wo.z));
+      return T * (transmission_ * D * distribution_.G(wo, mirrored) / std::abs(4 * wi.z * wo.z));
     }
     const float denom = sqr(dot(wi, h->wm) + dot(wo, h->wm) / h->eta_p) * wi.z * wo.z;
-    const float ft = D * distribution_.G(wo, wi) * (1 - F) * std::abs(dot(wi, h->wm) * dot(wo, h->wm) / denom);
-    return tint_ * (transmission_ * ft / sqr(h->eta_p));
+    const float ft = D * distribution_.G(wo, wi) * std::abs(dot(wi, h->wm) * dot(wo, h->wm) / denom);
+    return T * (transmission_ * ft / sqr(h->eta_p));
   }
 
   float pdf(const Vec3f& wo, const Vec3f& wi) const {
     const auto h = half_vector(wo, wi);
     if (!h) return 0.f;
-    const float R = fresnel(dot(wo, h->wm)), T = transmission_ * (1 - R);
+    const float R = selection(dot(wo, h->wm)), T = transmission_ * (1 - R);
     if (R + T <= 0) return 0.f;
     const float Dv = distribution_.D_visible(wo, h->wm);
     if (h->reflection) return Dv / (4 * abs_dot(wo, h->wm)) * R / (R + T);
@@ -103,7 +133,7 @@ class DielectricBsdf {
     if (wo.z == 0) return std::nullopt;
     if (smooth_) return sample_smooth(wo, uc);
     const Vec3f wm = distribution_.sample_visible_normal(wo, u);
-    const float R = fresnel(dot(wo, wm)), T = transmission_ * (1 - R);
+    const float R = selection(dot(wo, wm)), T = transmission_ * (1 - R);
     if (R + T <= 0) return std::nullopt;
     Vec3f wi;
     bool transmitted = false;
@@ -150,16 +180,19 @@ class DielectricBsdf {
   }
 
   std::optional<BsdfSample<N>> sample_smooth(const Vec3f& wo, float uc) const {
-    const float R = reflectance(wo);
-    const auto t = transmission(wo, R);
-    const float T = t ? transmission_ * (1 - R) : 0.f;
+    const SampledSpectrum<N> Rs = reflectance(wo);
+    const auto t = transmission(wo, Rs);
+    const float R = selection(cos_theta(wo)), T = t ? transmission_ * (1 - R) : 0.f;
     if (R + T <= 0) return std::nullopt;
     if (uc < R / (R + T)) {
       const Vec3f wi(-wo.x, -wo.y, wo.z);
-      return BsdfSample<N>{SampledSpectrum<N>(R / abs_cos_theta(wi)), wi, R / (R + T), true, false, 1.f};
+      return BsdfSample<N>{Rs / abs_cos_theta(wi), wi, R / (R + T), true, false, 1.f};
     }
     return BsdfSample<N>{t->weight / abs_cos_theta(t->wi), t->wi, T / (R + T), true, true, t->eta};
   }
+
+  // A thin wall's reflectance from one face's: R' = R + T²R/(1 − R²).
+  float wall(float R) const { return thin_ && R < 1 ? R + sqr(1 - R) * R / (1 - R * R) : R; }
 
   TrowbridgeReitz distribution_;
   bool smooth_;
@@ -167,6 +200,7 @@ class DielectricBsdf {
   SampledSpectrum<N> tint_;
   bool thin_;
   float transmission_, specular_;
+  [[no_unique_address]] OptionalPart<Extensions, SpectralReflectance<N>> lanes_;
 };
 
 }  // namespace prism

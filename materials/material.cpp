@@ -51,6 +51,16 @@ double schlick_matched_edge_tint(double r) {
 
 }  // namespace
 
+float ior_from_f0(float f0) {
+  const float root = std::sqrt(std::clamp(f0, 0.f, 0.9999f));  // F0 = 1: η → ∞
+  return (1 + root) / (1 - root);
+}
+
+float ior_with_scaled_f0(float eta, float c) {
+  const float scaled = ior_from_f0(sqr((eta - 1) / (eta + 1)) * std::max(c, 0.f));
+  return eta < 1 ? 1 / scaled : scaled;
+}
+
 std::array<float, 2> metal_nk_from_reflectance(float reflectance) {
   const double r = std::clamp(double(reflectance), 0.0, 0.999);  // r < 1 keeps k finite
   const auto nk = gulbrandsen_nk(r, schlick_matched_edge_tint(r));
@@ -74,6 +84,39 @@ SurfaceInputs PbrMaterial::inputs(const SurfacePoint& at) const {
   }
   if (transmission_texture) in.transmission *= texel(transmission_texture, false)[0];
   if (thickness_texture && texel(thickness_texture, false)[1] == 0) in.thin_walled = true;
+  const auto scale_rgb = [&](Rgb& c, const std::optional<Texture>& t) {
+    if (!t) return;
+    const auto v = texel(t, true);
+    for (int i = 0; i < 3; ++i) c[i] *= v[i];
+  };
+  in.specular = specular;
+  if (specular_texture) in.specular *= texel(specular_texture, false)[3];
+  in.specular_color = specular_color;
+  scale_rgb(in.specular_color, specular_color_texture);
+  if (clearcoat) {
+    in.clearcoat = clearcoat->factor;
+    in.clearcoat_roughness = clearcoat->roughness;
+    if (clearcoat->texture) in.clearcoat *= texel(clearcoat->texture, false)[0];
+    if (clearcoat->roughness_texture) in.clearcoat_roughness *= texel(clearcoat->roughness_texture, false)[1];
+  }
+  if (sheen) {
+    in.sheen_color = sheen->color;
+    scale_rgb(in.sheen_color, sheen->color_texture);
+    in.sheen_roughness = sheen->roughness;
+    if (sheen->roughness_texture) in.sheen_roughness *= texel(sheen->roughness_texture, false)[3];
+  }
+  if (iridescence) {
+    in.iridescence = iridescence->factor;
+    if (iridescence->texture) in.iridescence *= texel(iridescence->texture, false)[0];
+    const float t = iridescence->thickness_texture ? texel(iridescence->thickness_texture, false)[1] : 1.f;
+    in.iridescence_thickness = lerp(t, iridescence->thickness_min, iridescence->thickness_max);
+  }
+  if (diffuse_transmission) {
+    in.diffuse_transmission = diffuse_transmission->factor;
+    if (diffuse_transmission->texture) in.diffuse_transmission *= texel(diffuse_transmission->texture, false)[3];
+    in.diffuse_transmission_color = diffuse_transmission->color;
+    scale_rgb(in.diffuse_transmission_color, diffuse_transmission->color_texture);
+  }
   return in;
 }
 

@@ -41,13 +41,45 @@ struct Dielectric {
 struct SurfacePoint {
   std::array<Vec2f, 2> uv{};                      // TEXCOORD_0, TEXCOORD_1
   std::array<float, 4> vertex_color{1, 1, 1, 1};  // COLOR_0 (RGBA), white when absent
+  Vec3f coat_normal{0, 0, 1};                     // a clear coat's own normal, in the shading frame
 };
 
-// A PbrMaterial's parameters at one surface point: factor × texture × vertex colour.
+// A PbrMaterial's parameters at one surface point: factor × texture × vertex colour. The
+// layers' are left at their neutral values when the material has no such layer.
 struct SurfaceInputs {
   Rgb base_color;
   float alpha, metallic, roughness, transmission;
   bool thin_walled;
+  float specular = 1;
+  Rgb specular_color{1, 1, 1};
+  float clearcoat = 0, clearcoat_roughness = 0;
+  Rgb sheen_color{0, 0, 0};
+  float sheen_roughness = 0;
+  float iridescence = 0, iridescence_thickness = 0;  // nanometres
+  float diffuse_transmission = 0;
+  Rgb diffuse_transmission_color{1, 1, 1};
+};
+
+// The KHR material extensions' layers of a PbrMaterial, each a factor with its textures.
+struct Clearcoat {  // KHR_materials_clearcoat: a dielectric coat (index 1.5) over everything
+  float factor = 0, roughness = 0;
+  std::optional<Texture> texture, roughness_texture;  // linear; R × factor, G × roughness
+  std::optional<Texture> normal_texture;              // tangent space, linear: the coat's own normal
+  float normal_scale = 1;
+};
+struct Sheen {  // KHR_materials_sheen: a Charlie sheen over the base
+  Rgb color{0, 0, 0};
+  float roughness = 0;
+  std::optional<Texture> color_texture, roughness_texture;  // sRGB RGB × color; linear A × roughness
+};
+struct Iridescence {  // KHR_materials_iridescence: a thin film over the base (thin_film.h)
+  float factor = 0, ior = 1.3f, thickness_min = 100, thickness_max = 400;  // nanometres
+  std::optional<Texture> texture, thickness_texture;                       // linear; R × factor, G: min → max
+};
+struct DiffuseTransmission {  // KHR_materials_diffuse_transmission: the diffuse base, partly through
+  float factor = 0;
+  Rgb color{1, 1, 1};
+  std::optional<Texture> texture, color_texture;  // linear A × factor; sRGB RGB × color
 };
 
 // glTF's metallic–roughness material, interpreted physically (see pbr_bsdf.h and the README):
@@ -57,13 +89,20 @@ struct PbrMaterial {
   Rgb base_color{1, 1, 1};
   float alpha = 1;
   float metallic = 1, roughness = 1, transmission = 0;
-  float specular = 1;  // KHR_materials_specular's factor: scales the dielectric's reflectance
+  float specular = 1;           // KHR_materials_specular's factor: scales the dielectric's reflectance
+  Rgb specular_color{1, 1, 1};  // KHR_materials_specular's colour: scales F0 (not F90)
   Dielectric dielectric;
   std::optional<MeasuredMetal> metal;                 // replaces the base-colour metal when set
   std::optional<Texture> base_color_texture;          // sRGB; RGB × base_color, A × alpha
   std::optional<Texture> metallic_roughness_texture;  // linear; B × metallic, G × roughness
   std::optional<Texture> transmission_texture;        // linear; R × transmission
   std::optional<Texture> thickness_texture;           // linear; G = 0 marks a thin wall
+  std::optional<Texture> specular_texture;            // linear; A × specular
+  std::optional<Texture> specular_color_texture;      // sRGB; RGB × specular_color
+  std::optional<Clearcoat> clearcoat;
+  std::optional<Sheen> sheen;
+  std::optional<Iridescence> iridescence;
+  std::optional<DiffuseTransmission> diffuse_transmission;
 
   SurfaceInputs inputs(const SurfacePoint& at) const;
 
@@ -116,6 +155,12 @@ inline bool disperses(const Material& m, const Dielectric* front) {
   return d && (d->dispersive || (front && front->dispersive));
 }
 
+// The relative index η ≥ 1 whose normal-incidence reflectance ((η − 1)/(η + 1))² is f0.
+float ior_from_f0(float f0);
+// The relative index η' whose exact normal-incidence reflectance is that of η times c (at most
+// 1): KHR_materials_specular's coloured F0, on η's side of 1.
+float ior_with_scaled_f0(float eta, float c);
+
 // The n, k of a metal whose normal-incidence reflectance is r: Gulbrandsen's parametrisation
 // (2014, "Artist Friendly Metallic Fresnel", JCGT 3(4)) with the edge tint that gives the same
 // directional albedo as glTF's reference metal (Schlick, F0 = r). Measured metals in the
@@ -152,17 +197,61 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
     }
     n /= n_front, k /= n_front;
   }
-  const ConductorBsdf<N> metal(alpha, n, k);
-  if (p.metallic >= 1) return metal;
+  const bool layered = p.clearcoat > 0 || p.sheen_color.max() > 0;
+  const bool film = p.iridescence > 0 && p.iridescence_thickness > 0;
+  if (!layered && !film && p.specular_color == Rgb{1, 1, 1} && p.diffuse_transmission <= 0) {
+    // The plain metallic-roughness model, compiled without the extensions' parts.
+    const ConductorBsdf<N> metal(alpha, n, k);
+    if (p.metallic >= 1) return metal;
+    if constexpr (Dispersion)
+      if (disperses(m, front)) lambda.terminate_secondary();
+    const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
+    const DielectricBsdf<N> dielectric(alpha, eta, color, p.thin_walled, p.transmission, p.specular);
+    if (p.metallic <= 0 && p.transmission >= 1) return dielectric;
+    if (p.metallic <= 0 && p.transmission <= 0 && p.specular <= 0) return DiffuseBsdf<N>(color);  // no specular layer
+    return PbrBsdf<N>(p.metallic, metal, dielectric, p.transmission, color, alpha, eta, p.specular);
+  }
 
+  // The extensions: a thin film over the metal and the dielectric, a specular colour, diffuse
+  // transmission, under a clear coat and a sheen.
+  std::optional<FilmLanes<N>> film_lanes;
+  if (film)
+    film_lanes.emplace(ThinFilm{p.iridescence, p.iridescence_thickness, material.iridescence->ior}, lambda, n_front);
+  const ConductorBsdf<N, true> metal(alpha, n, k, p.metallic > 0 ? film_lanes : std::nullopt);
   if constexpr (Dispersion)
     if (disperses(m, front)) lambda.terminate_secondary();
   const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
-  const DielectricBsdf<N> dielectric(alpha, eta, color, p.thin_walled, p.transmission, material.specular);
-  if (p.metallic <= 0 && p.transmission >= 1) return dielectric;
-  if (p.metallic <= 0 && p.transmission <= 0 && material.specular <= 0)
-    return DiffuseBsdf<N>(color);  // no specular layer
-  return PbrBsdf<N>(p.metallic, metal, dielectric, p.transmission, color, alpha, eta, material.specular);
+  // Per-lane reflectance: the specular colour's indices, the film; and for the diffuse under
+  // them, each lane's index (with a film, the one of the film's highest reflectance).
+  std::optional<SpectralReflectance<N>> lanes;
+  typename PbrBsdf<N, true>::Extras extras;
+  if (film || p.specular_color != Rgb{1, 1, 1}) {
+    lanes.emplace();
+    lanes->film = film_lanes;
+    SampledSpectrum<N> reflecting(eta);
+    if (p.specular_color != Rgb{1, 1, 1}) {
+      const RgbUnboundedSpectrum tint(p.specular_color);
+      for (int i = 0; i < N; ++i) reflecting[i] = ior_with_scaled_f0(eta, tint(lambda[i]));
+      lanes->eta = reflecting;
+    }
+    extras.lane_etas = reflecting;
+    if (film)  // the film's reflectance peaks as a quarter-wave layer's, an interface of index n_f²/η
+      for (int i = 0; i < N; ++i) {
+        const float quarter_wave = sqr(film_lanes->ior[i]) / reflecting[i];
+        (*extras.lane_etas)[i] = std::max({reflecting[i], quarter_wave, 1 / quarter_wave});
+      }
+  }
+  const DielectricBsdf<N, true> dielectric(alpha, eta, color, p.thin_walled, p.transmission, p.specular, lanes);
+  if (p.diffuse_transmission > 0) {
+    extras.diffuse_transmission = p.diffuse_transmission;
+    extras.transmitted_albedo = sample(RgbAlbedoSpectrum(p.diffuse_transmission_color), lambda);
+  }
+  const PbrBsdf<N, true> pbr(p.metallic, metal, dielectric, p.transmission, color, alpha, eta, p.specular, extras);
+  std::optional<typename LayeredBsdf<N>::Coat> coat;
+  if (p.clearcoat > 0) coat = {p.clearcoat, sqr(p.clearcoat_roughness), 1.5f / n_front[0], at.coat_normal};
+  std::optional<typename LayeredBsdf<N>::Sheen> sheen;
+  if (p.sheen_color.max() > 0) sheen = {sample(RgbAlbedoSpectrum(p.sheen_color), lambda), sqr(p.sheen_roughness)};
+  return LayeredBsdf<N>(pbr, coat, sheen);
 }
 
 }  // namespace prism

@@ -1,10 +1,18 @@
 #pragma once
 // glTF's metallic-roughness model, physically (glTF 2.0 Appendix B; KHR_materials_transmission):
-//   f = m · f_metal + (1 − m) · [ f_dielectric + (1 − t) · f_diffuse ]
-// m = metallic, t = transmission; f_metal a conductor, f_dielectric the dielectric interface
-// (its reflection, and its transmission weighted by t), f_diffuse the Lambertian base under the
-// specular layer, coupled to it so that the whole stays energy-consistent and reciprocal:
+//   f = m · f_metal + (1 − m) · [ f_dielectric + (1 − t) · ((1 − d) f_diffuse + d f_diffuse_t) ]
+// m = metallic, t = transmission, d = diffuse transmission; f_metal a conductor, f_dielectric the
+// dielectric interface (its reflection, and its transmission weighted by t), f_diffuse the
+// Lambertian base under the specular layer, coupled to it so that the whole stays
+// energy-consistent and reciprocal:
 //   f_diffuse = ρ/π · (1 − E(μ_o)) (1 − E(μ_i)) / (1 − E_avg)      (see SpecularAlbedo)
+// and f_diffuse_t the same with the diffuse-transmission colour, for wi on the far side
+// (KHR_materials_diffuse_transmission: a thin wall, light leaves the other face diffusely).
+// E is the albedo of the dielectric's lobe for its index η; when a specular colour or a thin
+// film make the reflectance differ by lane, each lane couples with its own index η_λ: the
+// coloured one (exact), or with a film the index of its highest reflectance at normal incidence
+// (a quarter-wave layer's, n_f²/η). That bounds the film's albedo except near grazing when
+// n_f² > η: a white diffuse under a film of n_f = 1.8 reflects up to 0.9% too much at 87°.
 // Sampled by choosing a lobe with probability ∝ its albedo seen from wo, then sampling it; f and
 // pdf of non-delta directions are those of the whole mixture (for MIS). Without transmission
 // the surface is opaque and two-sided: seen from behind, it is the same as from the front.
@@ -12,19 +20,33 @@
 #include <array>
 #include <optional>
 
+#include "base/frame.h"
 #include "base/warp.h"
 #include "materials/conductor_bsdf.h"
 #include "materials/dielectric_bsdf.h"
+#include "materials/sheen_albedo.h"
+#include "materials/sheen_bsdf.h"
 #include "materials/specular_albedo.h"
 
 namespace prism {
 
-template <int N>
+// Extensions = false compiles the plain metallic-roughness model, true adds diffuse
+// transmission and the per-lane reflectance of the glTF extensions (LayeredBsdf's base).
+template <int N, bool Extensions = false>
 class PbrBsdf {
  public:
+  // The extensions' parts: diffuse transmission, and the indices of the lanes when they reflect
+  // differently (specular colour, thin film).
+  struct Extras {
+    float diffuse_transmission = 0;
+    SampledSpectrum<N> transmitted_albedo{0.f};
+    std::optional<SampledSpectrum<N>> lane_etas;
+  };
+
   // alpha, eta and specular must be those of `dielectric` (they pick its albedo E).
-  PbrBsdf(float metallic, const ConductorBsdf<N>& metal, const DielectricBsdf<N>& dielectric, float transmission,
-          const SampledSpectrum<N>& albedo, float alpha, float eta, float specular)
+  PbrBsdf(float metallic, const ConductorBsdf<N, Extensions>& metal, const DielectricBsdf<N, Extensions>& dielectric,
+          float transmission, const SampledSpectrum<N>& albedo, float alpha, float eta, float specular,
+          const OptionalPart<Extensions, Extras>& extras = {})
       : metallic_(metallic),
         transmission_(transmission),
         metal_(metal),
@@ -33,7 +55,16 @@ class PbrBsdf {
         alpha_(alpha),
         eta_(eta),
         specular_(specular),
-        e_avg_(specular * SpecularAlbedo::table().average(alpha, eta)) {}
+        e_avg_(specular * SpecularAlbedo::table().average(alpha, eta)) {
+    if constexpr (Extensions) {
+      if (!extras) return;
+      extras_ = Parts{extras->diffuse_transmission, extras->transmitted_albedo, {}};
+      if (!extras->lane_etas) return;
+      extras_->lanes = LaneCoupling{*extras->lane_etas, {}};
+      for (int i = 0; i < N; ++i)
+        extras_->lanes->e_avg[i] = specular * SpecularAlbedo::table().average(alpha, (*extras->lane_etas)[i]);
+    }
+  }
 
   bool is_specular() const {
     return (metallic_ == 0 || metal_.is_specular()) && dielectric_.is_specular() && diffuse_weight() == 0;
@@ -50,7 +81,13 @@ class PbrBsdf {
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
     if (flips(wo)) return f(-wo, -wi);
     SampledSpectrum<N> r = metal_.f(wo, wi) * metallic_ + dielectric_.f(wo, wi) * (1 - metallic_);
-    if (diffuse_weight() > 0 && same_hemisphere(wo, wi)) r += albedo_ * (diffuse_weight() * coupling(wo, wi) * kInvPi);
+    if (diffuse_weight() <= 0) return r;
+    if (same_hemisphere(wo, wi)) {
+      r += albedo_ * (coupling(wo, wi) * (diffuse_weight() * (1 - diffuse_transmission()) * kInvPi));
+    } else if constexpr (Extensions) {
+      if (diffuse_transmission() > 0)
+        r += extras_->transmitted_albedo * (coupling(wo, wi) * (diffuse_weight() * diffuse_transmission() * kInvPi));
+    }
     return r;
   }
 
@@ -73,10 +110,11 @@ class PbrBsdf {
     } else if (uc < p[0] + p[1]) {
       s = dielectric_.sample_f(wo, std::min((uc - p[0]) / p[1], 0.99999994f), u);
       if (s && s->specular) return scaled(*s, 1 - metallic_, p[1]);
-    } else {
+    } else {  // the diffuse base: reflected (p[2]) or transmitted to the far side (p[3])
+      const bool far_side = Extensions && uc >= 1 - p[3];
       Vec3f wi = sample_cosine_hemisphere(u);
-      if (wo.z < 0) wi.z = -wi.z;
-      s = BsdfSample<N>{{}, wi, 0.f};
+      if ((wo.z < 0) != far_side) wi.z = -wi.z;
+      s = BsdfSample<N>{{}, wi, 0.f, false, far_side};
     }
     if (!s) return std::nullopt;
     s->f = f(wo, s->wi);
@@ -93,27 +131,55 @@ class PbrBsdf {
   }
 
   float diffuse_weight() const { return (1 - metallic_) * (1 - transmission_); }
-
-  float E(float mu) const { return specular_ * SpecularAlbedo::table().E(std::abs(mu), alpha_, eta_); }
-  float coupling(const Vec3f& wo, const Vec3f& wi) const {
-    return e_avg_ < 1 ? (1 - E(wo.z)) * (1 - E(wi.z)) / (1 - e_avg_) : 0.f;
+  float diffuse_transmission() const {
+    if constexpr (Extensions)
+      if (extras_) return extras_->diffuse_transmission;
+    return 0.f;
   }
 
-  // Probabilities of sampling the metal, the dielectric interface and the diffuse base: each
-  // lobe's share of the light reflected towards wo.
+  float E(float mu) const { return specular_ * SpecularAlbedo::table().E(std::abs(mu), alpha_, eta_); }
+  // The coupling factor (1 − E(μ_o))(1 − E(μ_i)) / (1 − E_avg): one value, or one per lane.
+  float scalar_coupling(const Vec3f& wo, const Vec3f& wi) const {
+    return e_avg_ < 1 ? (1 - E(wo.z)) * (1 - E(wi.z)) / (1 - e_avg_) : 0.f;
+  }
+  auto coupling(const Vec3f& wo, const Vec3f& wi) const {
+    if constexpr (!Extensions) {
+      return scalar_coupling(wo, wi);
+    } else {
+      if (!extras_ || !extras_->lanes) return SampledSpectrum<N>(scalar_coupling(wo, wi));
+      const LaneCoupling& lanes = *extras_->lanes;
+      SampledSpectrum<N> c;
+      for (int i = 0; i < N; ++i) {
+        const auto lane_E = [&](float mu) {
+          return specular_ * SpecularAlbedo::table().E(std::abs(mu), alpha_, lanes.eta[i]);
+        };
+        c[i] = lanes.e_avg[i] < 1 ? (1 - lane_E(wo.z)) * (1 - lane_E(wi.z)) / (1 - lanes.e_avg[i]) : 0.f;
+      }
+      return c;
+    }
+  }
+
   // Σ (probability of lobe) × (its pdf), for the probabilities of wo (not flipped).
-  float mixture_pdf(const Vec3f& wo, const Vec3f& wi, const std::array<float, 3>& p) const {
+  float mixture_pdf(const Vec3f& wo, const Vec3f& wi, const std::array<float, 4>& p) const {
     float r = p[0] * metal_.pdf(wo, wi) + p[1] * dielectric_.pdf(wo, wi);
-    if (same_hemisphere(wo, wi)) r += p[2] * cosine_hemisphere_pdf(abs_cos_theta(wi));
+    if (same_hemisphere(wo, wi))
+      r += p[2] * cosine_hemisphere_pdf(abs_cos_theta(wi));
+    else if constexpr (Extensions)
+      r += p[3] * cosine_hemisphere_pdf(abs_cos_theta(wi));
     return r;
   }
 
-  std::array<float, 3> lobe_probabilities(const Vec3f& wo) const {
-    const float e = E(wo.z);
-    std::array<float, 3> w = {metallic_, (1 - metallic_) * (e + transmission_ * (1 - e)),
-                              diffuse_weight() * (1 - e) * std::max(albedo_.average(), 0.f)};
-    const float sum = w[0] + w[1] + w[2];
-    if (!(sum > 0)) return {0, 1, 0};
+  // Probabilities of sampling the metal, the dielectric interface, the diffuse base and its
+  // transmission: each lobe's share of the light scattered towards wo.
+  std::array<float, 4> lobe_probabilities(const Vec3f& wo) const {
+    const float e = E(wo.z), diffuse = diffuse_weight() * (1 - e);
+    std::array<float, 4> w = {metallic_, (1 - metallic_) * (e + transmission_ * (1 - e)),
+                              diffuse * (1 - diffuse_transmission()) * std::max(albedo_.average(), 0.f), 0.f};
+    if constexpr (Extensions)
+      if (extras_)
+        w[3] = diffuse * extras_->diffuse_transmission * std::max(extras_->transmitted_albedo.average(), 0.f);
+    const float sum = w[0] + w[1] + w[2] + w[3];
+    if (!(sum > 0)) return {0, 1, 0, 0};
     for (float& x : w) x /= sum;
     return w;
   }
@@ -125,11 +191,164 @@ class PbrBsdf {
     return s;
   }
 
+  struct LaneCoupling {
+    SampledSpectrum<N> eta, e_avg;
+  };
+  struct Parts {
+    float diffuse_transmission;
+    SampledSpectrum<N> transmitted_albedo;
+    std::optional<LaneCoupling> lanes;
+  };
+
   float metallic_, transmission_;
-  ConductorBsdf<N> metal_;
-  DielectricBsdf<N> dielectric_;
+  ConductorBsdf<N, Extensions> metal_;
+  DielectricBsdf<N, Extensions> dielectric_;
   SampledSpectrum<N> albedo_;
   float alpha_, eta_, specular_, e_avg_;
+  [[no_unique_address]] OptionalPart<Extensions, Parts> extras_;
+};
+
+// The glTF base under its top layers, KHR_materials_sheen and KHR_materials_clearcoat, each
+// layered by albedo scaling (Kulla & Conty 2017; Estevez & Kulla 2017 §3): a layer lets through
+// what its own lobe does not reflect, 1 − w·E(μ), w its weight, E its directional albedo.
+//   f = c f_coat + T_c(μ_o) T_c(μ_i) [ f_sheen + S(μ_o, μ_i) f_base ]
+//   T_c(μ) = 1 − c E_coat(μ)                     the coat (index 1.5, GGX) crossed on the way in and out
+//   S = min(1 − s E_sheen(μ_o), 1 − s E_sheen(μ_i))   KHR_materials_sheen's scaling, s = max of the colour
+// c = clearcoat factor. Each factor is ≤ 1 − (that layer's albedo towards wo), so the albedo
+// never exceeds 1; all are symmetric in wo and wi, so the whole is reciprocal. Light the coat
+// reflects back down is not followed (as in the extension). The coat has its own normal (the
+// clearcoat normal texture): its lobe and its μ are taken in that frame, and it reflects nothing
+// towards directions below it. Sampled by choosing the coat, the sheen or the base with
+// probability ∝ its share towards wo; f and pdf are the mixture's.
+template <int N>
+class LayeredBsdf {
+ public:
+  struct Coat {
+    float weight, alpha, eta;  // clearcoat factor, GGX α, index relative to the front medium
+    Vec3f normal;              // in the shading frame
+  };
+  struct Sheen {
+    SampledSpectrum<N> color;
+    float alpha;
+  };
+
+  LayeredBsdf(const PbrBsdf<N, true>& base, const std::optional<Coat>& coat, const std::optional<Sheen>& sheen)
+      : base_(base),
+        coat_(coat ? coat->alpha : 0, coat ? coat->eta : 1, SampledSpectrum<N>(1.f), false, 0),
+        coat_weight_(coat ? coat->weight : 0),
+        coat_alpha_(coat ? coat->alpha : 0),
+        coat_eta_(coat ? std::max(coat->eta, 1.f) : 1),
+        coat_tilted_(coat && coat->normal != Vec3f(0, 0, 1)),
+        coat_frame_(Frame::from_z(coat_tilted_ ? coat->normal : Vec3f(0, 0, 1))),
+        sheen_(sheen ? sheen->color : SampledSpectrum<N>(0.f), sheen ? sheen->alpha : 1),
+        sheen_weight_(sheen ? sheen->color.max() : 0),
+        sheen_alpha_(sheen ? sheen->alpha : 1) {}
+
+  bool is_specular() const {
+    return base_.is_specular() && sheen_weight_ == 0 && (coat_weight_ == 0 || coat_.is_specular());
+  }
+
+  DeltaLobes<N> delta_lobes(const Vec3f& wo) const {
+    DeltaLobes<N> d;
+    if (coat_weight_ > 0)
+      for (const DeltaLobe<N>& l : coat_.delta_lobes(to_coat(wo, wo)))
+        if (const Vec3f wi = from_coat(wo, l.wi); same_hemisphere(wo, wi))
+          d.add({wi, l.weight * coat_weight_, false, 1.f});
+    for (const DeltaLobe<N>& l : base_.delta_lobes(wo))
+      d.add({l.wi, l.weight * base_scale(wo, l.wi), l.transmission, l.eta});
+    return d;
+  }
+
+  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
+    SampledSpectrum<N> r = base_.f(wo, wi) * sheen_scale(wo, wi);
+    if (sheen_weight_ > 0) r += sheen_.f(wo, wi);
+    r *= coat_scale(wo, wi);
+    if (coat_weight_ > 0 && same_hemisphere(wo, wi)) r += coat_.f(to_coat(wo, wo), to_coat(wo, wi)) * coat_weight_;
+    return r;
+  }
+
+  float pdf(const Vec3f& wo, const Vec3f& wi) const { return mixture_pdf(wo, wi, layer_probabilities(wo)); }
+
+  std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
+    const auto p = layer_probabilities(wo);
+    std::optional<BsdfSample<N>> s;
+    if (uc < p[0]) {
+      s = coat_.sample_f(to_coat(wo, wo), uc / p[0], u);
+      if (!s) return std::nullopt;
+      s->wi = from_coat(wo, s->wi);
+      if (!same_hemisphere(wo, s->wi)) return std::nullopt;
+      if (s->specular) {
+        s->f *= coat_weight_;
+        s->pdf *= p[0];
+        return s;
+      }
+    } else if (uc < p[0] + p[1]) {
+      s = sheen_.sample_f(wo, 0, u);
+    } else {
+      s = base_.sample_f(wo, std::min((uc - p[0] - p[1]) / p[2], 0.99999994f), u);
+      if (s && s->specular) {
+        s->f *= base_scale(wo, s->wi);
+        s->pdf *= p[2];
+        return s;
+      }
+    }
+    if (!s) return std::nullopt;
+    s->f = f(wo, s->wi);
+    s->pdf = mixture_pdf(wo, s->wi, p);
+    if (!(s->pdf > 0)) return std::nullopt;
+    return s;
+  }
+
+ private:
+  // w in the coat's frame, seen from wo's side taken up (the coat is evaluated above the
+  // surface), and back.
+  Vec3f to_coat(const Vec3f& wo, const Vec3f& w) const {
+    const Vec3f v = wo.z < 0 ? -w : w;
+    return coat_tilted_ ? coat_frame_.to_local(v) : v;
+  }
+  Vec3f from_coat(const Vec3f& wo, const Vec3f& w) const {
+    const Vec3f v = coat_tilted_ ? coat_frame_.to_world(w) : w;
+    return wo.z < 0 ? -v : v;
+  }
+
+  // The coat's albedo towards w (none from below the coat's own horizon).
+  float coat_E(const Vec3f& w) const {
+    const float mu = (coat_tilted_ ? dot(w.z < 0 ? -w : w, coat_frame_.z) : std::abs(w.z));
+    return mu > 0 ? coat_weight_ * SpecularAlbedo::table().E(mu, coat_alpha_, coat_eta_) : 0.f;
+  }
+  float sheen_E(float mu) const { return sheen_weight_ * SheenAlbedo::table().E(std::abs(mu), sheen_alpha_); }
+  float coat_scale(const Vec3f& wo, const Vec3f& wi) const {
+    return coat_weight_ > 0 ? (1 - coat_E(wo)) * (1 - coat_E(wi)) : 1.f;
+  }
+  float sheen_scale(const Vec3f& wo, const Vec3f& wi) const {
+    return sheen_weight_ > 0 ? 1 - std::max(sheen_E(wo.z), sheen_E(wi.z)) : 1.f;
+  }
+  float base_scale(const Vec3f& wo, const Vec3f& wi) const { return coat_scale(wo, wi) * sheen_scale(wo, wi); }
+
+  float mixture_pdf(const Vec3f& wo, const Vec3f& wi, const std::array<float, 3>& p) const {
+    float r = p[2] * base_.pdf(wo, wi);
+    if (p[0] > 0 && same_hemisphere(wo, wi)) r += p[0] * coat_.pdf(to_coat(wo, wo), to_coat(wo, wi));
+    if (p[1] > 0) r += p[1] * sheen_.pdf(wo, wi);
+    return r;
+  }
+
+  // The coat's, the sheen's and the base's shares of the light scattered towards wo.
+  std::array<float, 3> layer_probabilities(const Vec3f& wo) const {
+    const float c = coat_weight_ > 0 ? coat_E(wo) : 0.f, t = 1 - c, s = sheen_E(wo.z);
+    std::array<float, 3> w = {c, t * s, t * (1 - s)};
+    const float sum = w[0] + w[1] + w[2];
+    if (!(sum > 0)) return {0, 0, 1};
+    for (float& x : w) x /= sum;
+    return w;
+  }
+
+  PbrBsdf<N, true> base_;
+  DielectricBsdf<N> coat_;
+  float coat_weight_, coat_alpha_, coat_eta_;
+  bool coat_tilted_;
+  Frame coat_frame_;
+  SheenBsdf<N> sheen_;
+  float sheen_weight_, sheen_alpha_;
 };
 
 }  // namespace prism

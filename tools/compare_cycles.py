@@ -33,6 +33,8 @@ REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # ../shared/assets/gltf/<name>/glTF/<name>.gltf.
 ASSETS = ["MetalRoughSpheresNoTextures", "TransmissionTest", "GlassVaseFlowers", "LightsPunctualLamp",
           "EmissiveStrengthTest", "AttenuationTest", "Box"]
+# The layered-material assets (issue 12), compared on request with --assets.
+LAYERED_ASSETS = ["ClearcoatWicker", "ClearCoatCarPaint", "SheenCloth", "SpecularTest"]
 
 DEFAULT_ASPECT = 4.0 / 3.0  # image aspect for assets without a camera
 LUMA = (0.2126, 0.7152, 0.0722)  # Rec.709 luminance of linear Rec.709 RGB
@@ -51,7 +53,7 @@ def parse_args():
     ap.add_argument("--height", type=int, default=0,
                     help="image height for both (default: width / the camera's aspectRatio, 4:3 without one)")
     ap.add_argument("--assets", default=",".join(ASSETS),
-                    help="comma-separated subset of: " + ", ".join(ASSETS))
+                    help="comma-separated subset of: " + ", ".join(ASSETS + LAYERED_ASSETS))
     ap.add_argument("--threads", type=int, default=2, help="threads for each renderer (default 2)")
     ap.add_argument("--max-depth", type=int, default=16,
                     help="Prism --max-depth D (bounces, camera hit = 0); Cycles gets --max-bounces D-1 (default 16)")
@@ -571,9 +573,10 @@ def main():
     sys.dont_write_bytecode = True  # never leave a __pycache__ in ../shared
     import exrstats
 
-    unknown = [x for x in a.assets if x not in ASSETS]
+    unknown = [x for x in a.assets if x not in ASSETS + LAYERED_ASSETS]
     if unknown:
-        print("compare_cycles: error: unknown asset(s) %s; choose from %s" % (", ".join(unknown), ", ".join(ASSETS)),
+        print("compare_cycles: error: unknown asset(s) %s; choose from %s" % (", ".join(unknown),
+                                                                            ", ".join(ASSETS + LAYERED_ASSETS)),
               file=sys.stderr)
         return 2
     os.makedirs(a.out, exist_ok=True)

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   prism::add_render_command(app);
   prism::add_merge_command(app);
   prism::add_farm_command(app);
+  prism::add_info_command(app);
   prism::add_fresnel_command(app);
   prism::add_converge_command(app);
   prism::add_bench_command(app);

@@ -11,6 +11,7 @@
 
 #include "apps/prism/commands.h"
 #include "apps/prism/film_image.h"
+#include "apps/prism/frame_sequence.h"
 #include "apps/prism/scene_setup.h"
 #include "base/checksum.h"
 #include "base/clock.h"
@@ -30,6 +31,8 @@ struct RenderArgs {
   std::string output, preview, colorspace = ColorPipeline::kDefaultOutput, aovs, spectral_bins, samples, crop;
   bool half = false, quiet = false, verbose = false, resume = false;
   double checkpoint = 0;
+  std::string frames;  // "A:B"
+  double fps = 24;
   RenderOptions options;
 };
 
@@ -111,10 +114,10 @@ SampleCounts sample_counts(const Film& film) {
   return c;
 }
 
-void run(const RenderArgs& args) {
-  if (args.quiet) log::set_level(log::Level::warn);
-  if (args.verbose) log::set_level(log::Level::verbose);
-  interrupt::install();
+// Renders the prepared scene to `output` (and `preview`, or a part file with --samples/--crop);
+// `time` is the animation time posed.
+void render_image(const RenderArgs& args, const PreparedScene& prepared, const std::string& output,
+                  const std::string& preview, std::optional<double> time) {
   const std::string colorspace = ColorPipeline::standard().canonical_name(args.colorspace);
   RenderOptions options = args.options;
   options.progress = !args.quiet;
@@ -122,9 +125,8 @@ void run(const RenderArgs& args) {
   if (!args.spectral_bins.empty()) options.spectral_bins = SpectralBins::parse(args.spectral_bins);
   parse_part(args, options);
   const bool part = !args.samples.empty() || !args.crop.empty();
-  const std::filesystem::path checkpoint = args.output + ".checkpoint";
+  const std::filesystem::path checkpoint = output + ".checkpoint";
 
-  const PreparedScene prepared = prepare_scene(args.scene);
   const Camera& camera = *prepared.camera;
   const std::string print = fingerprint(args, camera, options);
   std::optional<RenderState> resume;
@@ -166,10 +168,10 @@ void run(const RenderArgs& args) {
       save_checkpoint(checkpoint, result.state, print);
       fail("the part stopped before its last sample; {} keeps it: continue with --resume", checkpoint.string());
     }
-    save_checkpoint(args.output, result.state, print);
+    save_checkpoint(output, result.state, print);
     std::error_code ec;
     std::filesystem::remove(checkpoint, ec);
-    std::printf("wrote %s (part: samples %d:%d of %d, merge with `prism merge`)\n", args.output.c_str(),
+    std::printf("wrote %s (part: samples %d:%d of %d, merge with `prism merge`)\n", output.c_str(),
                 result.state.part.sample_begin, result.state.part.sample_end, options.spp);
     return;
   }
@@ -196,6 +198,7 @@ void run(const RenderArgs& args) {
       {"prism.estimatedRelRmse", film.estimated_rel_rmse()},
       {"prism.interrupted", int(result.interrupted)},
   };
+  if (time) image.metadata.push_back({"prism.time", *time});
   if (options.noise_threshold > 0) image.metadata.push_back({"prism.noiseThreshold", options.noise_threshold});
   if (options.time_limit > 0) image.metadata.push_back({"prism.timeLimit", options.time_limit});
   if (options.spectral_bins.count() > 0) {
@@ -204,17 +207,17 @@ void run(const RenderArgs& args) {
   }
   // A second signal from here on removes what this run wrote, as it would have before.
   std::vector<std::unique_ptr<interrupt::RemoveOnAbort>> written;
-  write_exr(args.output, image, args.half);
-  written.push_back(std::make_unique<interrupt::RemoveOnAbort>(args.output));
-  std::printf("wrote %s (%dx%d, %s)\n", args.output.c_str(), film.width(), film.height(), colorspace.c_str());
+  write_exr(output, image, args.half);
+  written.push_back(std::make_unique<interrupt::RemoveOnAbort>(output));
+  std::printf("wrote %s (%dx%d, %s)\n", output.c_str(), film.width(), film.height(), colorspace.c_str());
 
-  if (!args.preview.empty()) {
+  if (!preview.empty()) {
     std::vector<float> display = film.xyz_image();
     ColorPipeline::standard().xyz_to_display(ColorPipeline::kDefaultDisplay, ColorPipeline::kDefaultView,
                                              display.data(), display.size() / 3);
-    write_png(args.preview, film.width(), film.height(), display);
-    written.push_back(std::make_unique<interrupt::RemoveOnAbort>(args.preview));
-    std::printf("wrote %s (preview, %s / %s)\n", args.preview.c_str(), ColorPipeline::kDefaultDisplay,
+    write_png(preview, film.width(), film.height(), display);
+    written.push_back(std::make_unique<interrupt::RemoveOnAbort>(preview));
+    std::printf("wrote %s (preview, %s / %s)\n", preview.c_str(), ColorPipeline::kDefaultDisplay,
                 ColorPipeline::kDefaultView);
   }
   if (args.checkpoint > 0 && !complete) {
@@ -227,13 +230,45 @@ void run(const RenderArgs& args) {
   written.clear();
 }
 
+void run(const RenderArgs& args) {
+  if (args.quiet) log::set_level(log::Level::warn);
+  if (args.verbose) log::set_level(log::Level::verbose);
+  interrupt::install();
+  ColorPipeline::standard().canonical_name(args.colorspace);  // a bad name fails before any work
+  if (args.frames.empty()) {
+    render_image(args, prepare_scene(args.scene), args.output, args.preview, args.scene.gltf.time);
+    return;
+  }
+  const FrameRange range = parse_frames(args.frames);
+  if (!(args.fps > 0 && std::isfinite(args.fps))) fail("--fps {}: must be a positive number", args.fps);
+  SceneArgs scene_args = args.scene;
+  scene_args.gltf.time = range.first / args.fps;
+  PreparedScene prepared = prepare_scene(scene_args, true);
+  if (!prepared.gltf->animated()) log::warn("{}: nothing is animated; every frame is the same image", args.scene.scene);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int64_t frame = range.first; frame <= range.last; ++frame) {
+    const double time = frame / args.fps;
+    log::info("frame {} ({} of {}) at {:.4f} s", frame, frame - range.first + 1, range.last - range.first + 1, time);
+    if (frame > range.first && !pose_scene(prepared, scene_args, time)) log::info("nothing moved: same world");
+    render_image(args, prepared, frame_path(args.output, int(frame)),
+                 args.preview.empty() ? "" : frame_path(args.preview, int(frame)), time);
+  }
+  log::info("rendered {} frames in {:.1f} s", range.last - range.first + 1, seconds_since(t0));
+}
+
 }  // namespace
 
 void add_render_command(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a glTF 2.0 scene to a scene-referred OpenEXR image");
   add_scene_options(cmd, args->scene);
-  cmd->add_option("-o,--output", args->output, "Output OpenEXR file")->required();
+  cmd->add_option("-o,--output", args->output,
+                  "Output OpenEXR file (with --frames: a #### pattern for the frame number)")
+      ->required();
+  cmd->add_option("--frames", args->frames,
+                  "Render the animation's frames A to B (A:B) at --fps, loading the file once")
+      ->excludes("--time");
+  cmd->add_option("--fps", args->fps, "Frames per second of --frames: frame N is at N / fps seconds")->default_val(24);
   add_render_options(cmd, args->options);
   cmd->add_option("--noise-threshold", args->options.noise_threshold,
                   "Adaptive sampling: a pixel stops when its estimated error is below T (README); --spp is then "

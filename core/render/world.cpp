@@ -4,6 +4,7 @@
 
 #include "accel/triangle.h"
 #include "base/error.h"
+#include "base/frame.h"
 #include "base/rng.h"
 #include "spectral/cie.h"
 
@@ -166,20 +167,28 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
     if (len > 0 && std::isfinite(len)) si.ns = face_forward(ns / len, si.n);
   }
   const Material& material = *si.material;
-  if (material.normal_texture && !m.tangents.empty()) {
-    // Tangent-space normal map (glTF §3.9.3): n = normalize(T x + B y + N z), B = sign · N × T.
+  if (m.tangents.empty()) return si;
+  // Tangent-space normal map (glTF §3.9.3): n = normalize(T x + B y + N z), B = sign · N × T,
+  // about the interpolated normal; the base's, and a clear coat's own (KHR_materials_clearcoat).
+  const Vec3f ns = si.ns;
+  const auto map_normal = [&](const Texture& texture, float scale) -> std::optional<Vec3f> {
     const auto t4 = interpolate(m.tangents, m, hit.prim, b);
     const Vec3f t_world = apply(inst.linear, Vec3f(t4[0], t4[1], t4[2]));
-    const Vec3f t = t_world - si.ns * dot(si.ns, t_world);
-    const auto c = material.normal_texture->lookup(si.at.uv[material.normal_texture->texcoord], false);
-    const Vec3f local((2 * c[0] - 1) * material.normal_scale, (2 * c[1] - 1) * material.normal_scale, 2 * c[2] - 1);
-    if (length_squared(t) > 0 && length_squared(local) > 0) {
-      const Vec3f tn = normalize(t);
-      const Vec3f bn = cross(si.ns, tn) * ((t4[3] < 0) != inst.mirrored ? -1.f : 1.f);
-      const Vec3f mapped = tn * local.x + bn * local.y + si.ns * local.z;
-      if (length_squared(mapped) > 0 && is_finite(mapped)) si.ns = face_forward(normalize(mapped), si.n);
-    }
-  }
+    const Vec3f t = t_world - ns * dot(ns, t_world);
+    const auto c = texture.lookup(si.at.uv[texture.texcoord], false);
+    const Vec3f local((2 * c[0] - 1) * scale, (2 * c[1] - 1) * scale, 2 * c[2] - 1);
+    if (length_squared(t) == 0 || length_squared(local) == 0) return std::nullopt;
+    const Vec3f tn = normalize(t);
+    const Vec3f bn = cross(ns, tn) * ((t4[3] < 0) != inst.mirrored ? -1.f : 1.f);
+    const Vec3f mapped = tn * local.x + bn * local.y + ns * local.z;
+    if (length_squared(mapped) == 0 || !is_finite(mapped)) return std::nullopt;
+    return face_forward(normalize(mapped), si.n);
+  };
+  if (material.normal_texture)
+    if (const auto n = map_normal(*material.normal_texture, material.normal_scale)) si.ns = *n;
+  if (const auto* p = std::get_if<PbrMaterial>(&material.kind); p && p->clearcoat && p->clearcoat->normal_texture)
+    if (const auto n = map_normal(*p->clearcoat->normal_texture, p->clearcoat->normal_scale))
+      si.at.coat_normal = Frame::from_z(si.ns).to_local(*n);  // in the shading frame the BSDF sees
   return si;
 }
 

@@ -137,10 +137,69 @@ PbrMaterial GltfLoader::surface(const tinygltf::Material& m, Rgb base, const std
   p.metallic = std::clamp(float(m.pbrMetallicRoughness.metallicFactor), 0.f, 1.f);
   p.roughness = std::clamp(float(m.pbrMetallicRoughness.roughnessFactor), 0.f, 1.f);
   p.transmission = float(number("KHR_materials_transmission", "transmissionFactor", 0, 0, 1));
+  // An RGB factor of extension `ext`, each channel in [lo, hi].
+  const auto color = [&](const char* ext, const char* field, Rgb fallback, double lo, double hi) {
+    const auto it = m.extensions.find(ext);
+    if (it == m.extensions.end() || !it->second.Has(field)) return fallback;
+    const auto& v = it->second.Get(field);
+    Rgb c;
+    for (int i = 0; i < 3; ++i) {
+      const double x = v.IsArray() && v.ArrayLen() == 3 && v.Get(i).IsNumber() ? v.Get(i).GetNumberAsDouble() : -1;
+      if (!(x >= lo && x <= hi))
+        fail("{}: {}: {}.{} must hold 3 numbers in [{}, {}]", file_, context, ext, field, lo, hi);
+      c[i] = float(x);
+    }
+    return c;
+  };
+  const auto has = [&](const char* ext) { return m.extensions.count(ext) > 0; };
+  const auto tex = [&](const char* ext, const char* field) { return extension_texture(m, ext, field, context); };
+
   p.specular = float(number("KHR_materials_specular", "specularFactor", 1, 0, 1));
-  if (const auto it = m.extensions.find("KHR_materials_specular");
-      it != m.extensions.end() && it->second.Has("specularColorFactor"))
-    warn_once("KHR_materials_specular's specularColorFactor is not supported; using the factor only");
+  p.specular_texture = tex("KHR_materials_specular", "specularTexture");
+  // Values above 1 are allowed (F0 is capped at 1 after the product).
+  p.specular_color = color("KHR_materials_specular", "specularColorFactor", {1, 1, 1}, 0, 1e6);
+  p.specular_color_texture = tex("KHR_materials_specular", "specularColorTexture");
+  if (has("KHR_materials_clearcoat")) {
+    const char* ext = "KHR_materials_clearcoat";
+    Clearcoat c;
+    c.factor = float(number(ext, "clearcoatFactor", 0, 0, 1));
+    c.roughness = float(number(ext, "clearcoatRoughnessFactor", 0, 0, 1));
+    c.texture = tex(ext, "clearcoatTexture");
+    c.roughness_texture = tex(ext, "clearcoatRoughnessTexture");
+    c.normal_texture = tex(ext, "clearcoatNormalTexture");
+    if (const auto& info = m.extensions.at(ext).Get("clearcoatNormalTexture"); c.normal_texture && info.Has("scale"))
+      c.normal_scale = float(info.Get("scale").GetNumberAsDouble());
+    if (c.factor > 0) p.clearcoat = std::move(c);
+  }
+  if (has("KHR_materials_sheen")) {
+    const char* ext = "KHR_materials_sheen";
+    Sheen sh;
+    sh.color = color(ext, "sheenColorFactor", {0, 0, 0}, 0, 1);
+    sh.roughness = float(number(ext, "sheenRoughnessFactor", 0, 0, 1));
+    sh.color_texture = tex(ext, "sheenColorTexture");
+    sh.roughness_texture = tex(ext, "sheenRoughnessTexture");
+    if (sh.color.max() > 0) p.sheen = std::move(sh);
+  }
+  if (has("KHR_materials_iridescence")) {
+    const char* ext = "KHR_materials_iridescence";
+    Iridescence ir;
+    ir.factor = float(number(ext, "iridescenceFactor", 0, 0, 1));
+    ir.ior = float(number(ext, "iridescenceIor", 1.3, 1, 10));
+    ir.thickness_min = float(number(ext, "iridescenceThicknessMinimum", 100, 0, 1e5));
+    ir.thickness_max = float(number(ext, "iridescenceThicknessMaximum", 400, 0, 1e5));
+    ir.texture = tex(ext, "iridescenceTexture");
+    ir.thickness_texture = tex(ext, "iridescenceThicknessTexture");
+    if (ir.factor > 0) p.iridescence = std::move(ir);
+  }
+  if (has("KHR_materials_diffuse_transmission")) {
+    const char* ext = "KHR_materials_diffuse_transmission";
+    DiffuseTransmission d;
+    d.factor = float(number(ext, "diffuseTransmissionFactor", 0, 0, 1));
+    d.color = color(ext, "diffuseTransmissionColorFactor", {1, 1, 1}, 0, 1);
+    d.texture = tex(ext, "diffuseTransmissionTexture");
+    d.color_texture = tex(ext, "diffuseTransmissionColorTexture");
+    if (d.factor > 0) p.diffuse_transmission = std::move(d);
+  }
 
   IorModel ior_model = ConstantIor{float(number("KHR_materials_ior", "ior", 1.5, 1, 1e3))};
   if (const std::string glass = prism_extra(m, "glass"); !glass.empty()) {

@@ -15,8 +15,10 @@ SceneFeatures analyze_features(const Scene& scene) {
     f.textures |= m.normal_texture || m.emission_texture;
     if (const auto* p = std::get_if<PbrMaterial>(&m.kind)) {
       f.measured_metals |= p->metal && p->metallic > 0;
-      f.textures |=
-          p->base_color_texture || p->metallic_roughness_texture || p->transmission_texture || p->thickness_texture;
+      f.textures |= p->base_color_texture || p->metallic_roughness_texture || p->transmission_texture ||
+                    p->thickness_texture || p->specular_texture || p->specular_color_texture;
+      f.layers |=
+          p->clearcoat || p->sheen || p->iridescence || p->diffuse_transmission || p->specular_color != Rgb{1, 1, 1};
     }
     f.alpha |= m.alpha_mode != AlphaMode::opaque;
   }
@@ -47,6 +49,7 @@ std::string SceneFeatures::to_string() const {
   add(measured_metals, "measured_metals");
   add(textures, "textures");
   add(alpha, "alpha");
+  add(layers, "layers");
   return s.empty() ? "none" : s;
 }
 

@@ -21,6 +21,8 @@ struct SceneFeatures {
   bool measured_metals = false;     // a metal with catalogue n, k tables
   bool textures = false;            // a material reads an image
   bool alpha = false;               // a material is cut away by alpha (MASK or BLEND)
+  bool layers =
+      false;  // clearcoat, sheen, thin film, diffuse transmission or specular colour (LayeredBsdf, per-lane F)
 
   std::string to_string() const;  // e.g. "emissive_triangles point_lights"
 };

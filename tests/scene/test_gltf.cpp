@@ -10,25 +10,13 @@
 #include "scene/gltf_loader.h"
 #include "scene/scene_features.h"
 #include "spectral/cie.h"
+#include "support/gltf_builder.h"
 #include "support/test_scenes.h"
 
 using namespace prism;
+using test::base64;
 
 namespace {
-
-std::string base64(const std::vector<unsigned char>& bytes) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t n = (uint32_t(bytes[i]) << 16) | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
-                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
-    out += table[(n >> 18) & 63];
-    out += table[(n >> 12) & 63];
-    out += i + 1 < bytes.size() ? table[(n >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? table[n & 63] : '=';
-  }
-  return out;
-}
 
 // One triangle (u16 indices), one emissive material, a camera and a point light, nested nodes.
 struct TriangleGltf {
@@ -253,7 +241,40 @@ TEST_CASE("glTF materials map to Prism's optics: transmission, ior, dispersion, 
   CHECK(std::get<PbrMaterial>(s.materials[0].kind).specular == Approx(0.25f));
   CHECK(std::get<PbrMaterial>(s.materials[0].kind).transmission == 0);
 
+  // The layer extensions: clearcoat, sheen, iridescence, diffuse transmission, specular colour.
+  s = with_material(R"({"extensions": {
+      "KHR_materials_specular": {"specularColorFactor": [2, 1, 0.5]},
+      "KHR_materials_clearcoat": {"clearcoatFactor": 0.8, "clearcoatRoughnessFactor": 0.1},
+      "KHR_materials_sheen": {"sheenColorFactor": [0.2, 0.3, 0.4], "sheenRoughnessFactor": 0.6},
+      "KHR_materials_iridescence": {"iridescenceFactor": 0.9, "iridescenceIor": 1.4, "iridescenceThicknessMaximum": 500},
+      "KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 0.3,
+                                             "diffuseTransmissionColorFactor": [1, 0.5, 0.25]}}})");
+  {
+    const auto& p = std::get<PbrMaterial>(s.materials[0].kind);
+    CHECK(p.specular_color == Rgb{2, 1, 0.5f});
+    REQUIRE(p.clearcoat);
+    CHECK(p.clearcoat->factor == Approx(0.8f));
+    CHECK(p.clearcoat->roughness == Approx(0.1f));
+    REQUIRE(p.sheen);
+    CHECK(p.sheen->color == Rgb{0.2f, 0.3f, 0.4f});
+    CHECK(p.sheen->roughness == Approx(0.6f));
+    REQUIRE(p.iridescence);
+    CHECK(p.iridescence->ior == Approx(1.4f));
+    CHECK(p.inputs({}).iridescence_thickness == Approx(500));  // no texture: the maximum
+    REQUIRE(p.diffuse_transmission);
+    CHECK(p.diffuse_transmission->color == Rgb{1, 0.5f, 0.25f});
+    CHECK(analyze_features(s).layers);
+  }
+  // Zero factors leave the layers out.
+  s = with_material(R"({"extensions": {"KHR_materials_clearcoat": {}, "KHR_materials_sheen": {},
+      "KHR_materials_iridescence": {}, "KHR_materials_diffuse_transmission": {}}})");
+  CHECK_FALSE(analyze_features(s).layers);
+
   // Errors name the problem.
+  CHECK_THROWS_WITH(with_material(R"({"extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 2]}}})"),
+                    Catch::Contains("sheenColorFactor"));
+  CHECK_THROWS_WITH(with_material(R"({"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 2}}})"),
+                    Catch::Contains("clearcoatFactor"));
   CHECK_THROWS_WITH(with_material(R"({"extras": {"prism": {"metal": "Mithril"}}})"), Catch::Contains("Mithril"));
   CHECK_THROWS_WITH(with_material(R"({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
       "KHR_materials_ior": {"ior": 0.5}}})"),

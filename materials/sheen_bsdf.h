@@ -1,0 +1,81 @@
+#pragma once
+// Sheen: the "Charlie" distribution of fibres standing on the surface (Estevez & Kulla 2017,
+// "Production Friendly Microfacet Sheen BRDF"), as KHR_materials_sheen specifies it:
+//   f = C · D(m) G(wo, wi) / (4 |cos θ_o cos θ_i|),  m = normalize(wo + wi),
+//   D(m) = (2 + 1/α) sin^{1/α} θ_m / (2π),  G = 1 / (1 + Λ(μ_o) + Λ(μ_i)),
+// α = sheenRoughness², Λ their fitted shadowing (exp of L(μ) = a/(1 + b μ^c) + d μ + e, mirrored
+// about μ = ½ for the terminator). Sampled with the cosine-weighted hemisphere: pdf = |cos θ_i|/π
+// (the lobe is broad and faint; the mixture that holds it samples the sharp lobes).
+// Two-sided: a direction below the surface sees the same lobe, mirrored. Where the fitted lobe
+// would reflect more than it receives (grazing, α < 0.1), it is scaled down to an albedo of
+// at most 1 (SheenAlbedo::scale).
+
+#include <cmath>
+#include <optional>
+
+#include "base/warp.h"
+#include "materials/bsdf_sample.h"
+#include "materials/sheen_albedo.h"
+
+namespace prism {
+
+class CharlieSheen {
+ public:
+  explicit CharlieSheen(float alpha) : alpha_(std::clamp(alpha, 1e-3f, 1.f)) {}
+
+  float D(const Vec3f& m) const {
+    const float sin2 = std::max(0.f, 1 - m.z * m.z);
+    return (2 + 1 / alpha_) * std::pow(sin2, 0.5f / alpha_) / (2 * kPi);
+  }
+  float G(const Vec3f& wo, const Vec3f& wi) const { return 1 / (1 + Lambda(std::abs(wo.z)) + Lambda(std::abs(wi.z))); }
+  // f / C for directions on the same side.
+  float value(const Vec3f& wo, const Vec3f& wi) const {
+    const Vec3f m = wo + wi;
+    if (wo.z == 0 || wi.z == 0 || length_squared(m) == 0) return 0.f;
+    return D(normalize(m) * (m.z < 0 ? -1.f : 1.f)) * G(wo, wi) / std::abs(4 * wo.z * wi.z);
+  }
+
+ private:
+  // Estevez & Kulla's fit, its five parameters blended between α = 0 and α = 1 by (1 − α)².
+  float L(float mu) const {
+    const float t = sqr(1 - alpha_);
+    const float a = lerp(t, 21.5473f, 25.3245f), b = lerp(t, 3.82987f, 3.32435f), c = lerp(t, 0.19823f, 0.16801f),
+                d = lerp(t, -1.97760f, -1.27393f), e = lerp(t, -4.32054f, -4.85967f);
+    return a / (1 + b * std::pow(mu, c)) + d * mu + e;
+  }
+  float Lambda(float mu) const { return mu < 0.5f ? std::exp(L(mu)) : std::exp(2 * L(0.5f) - L(1 - mu)); }
+
+  float alpha_;
+};
+
+template <int N>
+class SheenBsdf {
+ public:
+  SheenBsdf(const SampledSpectrum<N>& color, float alpha)
+      : color_(color * SheenAlbedo::table().scale(alpha)), charlie_(alpha) {}
+
+  bool is_specular() const { return false; }
+  DeltaLobes<N> delta_lobes(const Vec3f&) const { return {}; }
+
+  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
+    return same_hemisphere(wo, wi) ? color_ * charlie_.value(wo, wi) : SampledSpectrum<N>(0.f);
+  }
+
+  float pdf(const Vec3f& wo, const Vec3f& wi) const {
+    return same_hemisphere(wo, wi) ? cosine_hemisphere_pdf(abs_cos_theta(wi)) : 0.f;
+  }
+
+  std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float, Vec2f u) const {
+    Vec3f wi = sample_cosine_hemisphere(u);
+    if (wo.z < 0) wi.z = -wi.z;
+    const float p = pdf(wo, wi);
+    if (!(p > 0)) return std::nullopt;
+    return BsdfSample<N>{f(wo, wi), wi, p};
+  }
+
+ private:
+  SampledSpectrum<N> color_;
+  CharlieSheen charlie_;
+};
+
+}  // namespace prism

@@ -1,0 +1,84 @@
+// Thin-film interference (materials/thin_film.h) against an independent reference: the 2×2
+// characteristic-matrix (transfer-matrix) method of Born & Wolf §1.6.2, in double, which never
+// forms Airy's geometric series.
+
+#include <catch2/catch.hpp>
+#include <complex>
+
+#include "materials/catalogue.h"
+#include "materials/fresnel.h"
+#include "materials/thin_film.h"
+
+using namespace prism;
+
+namespace {
+
+using C = std::complex<double>;
+
+// Reflectance of ambient | film | base for one polarisation by the characteristic matrix
+//   M = [[cos β, −i sin β / Y_f], [−i Y_f sin β, cos β]],  β = 2π d q_f / λ,
+//   r = (Y_a m11 + Y_a Y_b m12 − m21 − Y_b m22) / (Y_a m11 + Y_a Y_b m12 + m21 + Y_b m22),
+// with the optical admittances Y = q (s) or n²/q (p), q = √(n² − n_a² sin²θ_a).
+double tmm_reflectance(bool p, double cos_a, double lambda, double d, double na, double nf, C nb) {
+  const double s2 = na * na * (1 - cos_a * cos_a);
+  const C qa(na * cos_a), qf = std::sqrt(C(nf * nf) - s2), qb = std::sqrt(nb * nb - s2);
+  const auto Y = [p](C n, C q) { return p ? n * n / q : q; };
+  const C ya = Y(na, qa), yf = Y(nf, qf), yb = Y(nb, qb);
+  const C beta = 2 * 3.14159265358979323846 * d * qf / lambda;
+  const C i(0, 1);
+  const C m11 = std::cos(beta), m12 = -i * std::sin(beta) / yf, m21 = -i * yf * std::sin(beta), m22 = std::cos(beta);
+  const C num = ya * m11 + ya * yb * m12 - m21 - yb * m22, den = ya * m11 + ya * yb * m12 + m21 + yb * m22;
+  return std::norm(num / den);
+}
+
+double tmm(double cos_a, double lambda, double d, double na, double nf, C nb) {
+  return (tmm_reflectance(false, cos_a, lambda, d, na, nf, nb) + tmm_reflectance(true, cos_a, lambda, d, na, nf, nb)) /
+         2;
+}
+
+}  // namespace
+
+TEST_CASE("thin film: Airy's sum equals the transfer-matrix reference over dielectric and metal bases") {
+  const MeasuredMetal au = MaterialCatalogue::standard().metal("Au");
+  for (double lambda : {380.0, 450.0, 550.0, 640.0, 720.0})
+    for (double d : {0.0, 1.0, 50.0, 137.0, 300.0, 611.0, 900.0, 1200.0})
+      for (double cos_a : {1.0, 0.8, 0.5, 0.2, 0.02})
+        for (double nf : {1.0, 1.3, 1.8, 2.4}) {
+          const C bases[] = {C(1.5), C(1.0), C(1.33), C(evaluate(au.n, float(lambda)), evaluate(au.k, float(lambda)))};
+          for (const C nb : bases) {
+            INFO("λ " << lambda << " d " << d << " cos " << cos_a << " n_film " << nf << " base " << nb);
+            CHECK(thin_film_reflectance(cos_a, lambda, d, 1.0, nf, nb) ==
+                  Approx(tmm(cos_a, lambda, d, 1.0, nf, nb)).margin(1e-4));
+          }
+          // Seen from inside glass (n 1.5) through the film into air: total internal reflection
+          // past the critical angle, evanescent in the film.
+          INFO("from glass: λ " << lambda << " d " << d << " cos " << cos_a << " n_film " << nf);
+          CHECK(thin_film_reflectance(cos_a, lambda, d, 1.5, nf, C(1.0)) ==
+                Approx(tmm(cos_a, lambda, d, 1.5, nf, C(1.0))).margin(1e-4));
+        }
+}
+
+TEST_CASE("thin film: no thickness, or the ambient's index, leaves the bare base's Fresnel reflectance") {
+  const MeasuredMetal cu = MaterialCatalogue::standard().metal("Cu");
+  for (float lambda : {400.f, 550.f, 700.f})
+    for (float cos_a : {1.f, 0.6f, 0.1f}) {
+      const float n = evaluate(cu.n, lambda), k = evaluate(cu.k, lambda);
+      CHECK(thin_film_reflectance(cos_a, lambda, 0, 1, 1.6, C(n, k)) ==
+            Approx(fresnel_conductor(cos_a, n, k)).margin(1e-6));
+      CHECK(thin_film_reflectance(cos_a, lambda, 0, 1, 1.6, C(1.5)) ==
+            Approx(fresnel_dielectric(cos_a, 1.5f)).margin(1e-6));
+      for (double d : {100.0, 750.0}) {
+        CHECK(thin_film_reflectance(cos_a, lambda, d, 1, 1, C(n, k)) ==
+              Approx(fresnel_conductor(cos_a, n, k)).margin(1e-6));
+        CHECK(thin_film_reflectance(cos_a, lambda, d, 1, 1, C(1.5)) ==
+              Approx(fresnel_dielectric(cos_a, 1.5f)).margin(1e-6));
+      }
+    }
+}
+
+TEST_CASE("thin film: a quarter-wave film of index √n on glass is an anti-reflection coating") {
+  const double n = 1.5, nf = std::sqrt(n), lambda = 550, d = lambda / (4 * nf);
+  CHECK(thin_film_reflectance(1, lambda, d, 1, nf, C(n)) == Approx(0).margin(1e-12));
+  // Half-wave: absent at its design wavelength.
+  CHECK(thin_film_reflectance(1, lambda, 2 * d, 1, nf, C(n)) == Approx(0.04).margin(1e-9));
+}
