@@ -2,7 +2,8 @@
 // a scene-referred OpenEXR image (with AOV layers and spectral bins on request, and optionally an
 // sRGB preview PNG), printing the render statistics and the image's estimated error. Stops early
 // on --time-limit or a first SIGINT/SIGTERM (writing what it has), keeps a checkpoint to
-// --resume from, and aborts without output on a second signal.
+// --resume from, and aborts without output on a second signal. With `--frames A:B` it renders the
+// animation's frames A to B, loading the file once.
 
 #include <chrono>
 #include <cstdio>
@@ -81,16 +82,18 @@ uint64_t scene_hash(const std::filesystem::path& file) {
 
 // Everything that shapes the image but the sample count: a checkpoint resumes, and parts merge,
 // only with these.
-std::string fingerprint(const RenderArgs& args, const Camera& camera, const RenderOptions& o) {
+std::string fingerprint(const RenderArgs& args, const Camera& camera, const RenderOptions& o,
+                        std::optional<double> time) {
   const SceneArgs& s = args.scene;
   return fmt::format(
-      "scene={} scene-hash={:016x} env={} env-map={} env-rotate={} env-scale={} camera={} size={}x{} integrator={} "
+      "scene={} scene-hash={:016x} time={} env={} env-map={} env-rotate={} env-scale={} camera={} size={}x{} "
+      "integrator={} "
       "seed={} sampler={} "
       "wavelengths={} max-depth={} light-sampling={} noise-threshold={} aovs={} spectral-bins={}",
-      std::filesystem::absolute(s.scene).string(), scene_hash(s.scene), s.env, s.env_map, s.env_rotate, s.env_scale,
-      s.camera, camera.width(), camera.height(), integrator_name(o.integrator), o.seed, sampler_name(o.sampler),
-      o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf", o.noise_threshold, o.aovs,
-      o.spectral_bins.to_string());
+      std::filesystem::absolute(s.scene).string(), scene_hash(s.scene), time ? fmt::format("{}", *time) : "-", s.env,
+      s.env_map, s.env_rotate, s.env_scale, s.camera, camera.width(), camera.height(), integrator_name(o.integrator),
+      o.seed, sampler_name(o.sampler), o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf",
+      o.noise_threshold, o.aovs, o.spectral_bins.to_string());
 }
 
 // The image's error as the log and the header state it.
@@ -114,9 +117,9 @@ SampleCounts sample_counts(const Film& film) {
   return c;
 }
 
-// Renders the prepared scene to `output` (and `preview`, or a part file with --samples/--crop);
-// `time` is the animation time posed.
-void render_image(const RenderArgs& args, const PreparedScene& prepared, const std::string& output,
+// Renders the prepared scene to `output` (and `preview`); `time` is the animation time posed.
+// With --samples/--crop it writes a part file instead. Returns false if a signal interrupted it.
+bool render_image(const RenderArgs& args, const PreparedScene& prepared, const std::string& output,
                   const std::string& preview, std::optional<double> time) {
   const std::string colorspace = ColorPipeline::standard().canonical_name(args.colorspace);
   RenderOptions options = args.options;
@@ -128,7 +131,7 @@ void render_image(const RenderArgs& args, const PreparedScene& prepared, const s
   const std::filesystem::path checkpoint = output + ".checkpoint";
 
   const Camera& camera = *prepared.camera;
-  const std::string print = fingerprint(args, camera, options);
+  const std::string print = fingerprint(args, camera, options, time);
   std::optional<RenderState> resume;
   if (args.resume) {
     resume = load_checkpoint(checkpoint, print);
@@ -173,7 +176,7 @@ void render_image(const RenderArgs& args, const PreparedScene& prepared, const s
     std::filesystem::remove(checkpoint, ec);
     std::printf("wrote %s (part: samples %d:%d of %d, merge with `prism merge`)\n", output.c_str(),
                 result.state.part.sample_begin, result.state.part.sample_end, options.spp);
-    return;
+    return true;
   }
   const SampleCounts counts = sample_counts(film);
   ExrImage image = film_image(film, colorspace);
@@ -198,9 +201,9 @@ void render_image(const RenderArgs& args, const PreparedScene& prepared, const s
       {"prism.estimatedRelRmse", film.estimated_rel_rmse()},
       {"prism.interrupted", int(result.interrupted)},
   };
-  if (time) image.metadata.push_back({"prism.time", *time});
   if (options.noise_threshold > 0) image.metadata.push_back({"prism.noiseThreshold", options.noise_threshold});
   if (options.time_limit > 0) image.metadata.push_back({"prism.timeLimit", options.time_limit});
+  if (time) image.metadata.push_back({"prism.time", *time});
   if (options.spectral_bins.count() > 0) {
     image.metadata.push_back({"spectralLayoutVersion", std::string("1.0")});
     image.metadata.push_back({"emissiveUnits", std::string("W.m^-2.sr^-1")});
@@ -228,6 +231,7 @@ void render_image(const RenderArgs& args, const PreparedScene& prepared, const s
     std::filesystem::remove(checkpoint, ec);  // the render is done: nothing to resume
   }
   written.clear();
+  return !result.interrupted;
 }
 
 void run(const RenderArgs& args) {
@@ -250,8 +254,11 @@ void run(const RenderArgs& args) {
     const double time = frame / args.fps;
     log::info("frame {} ({} of {}) at {:.4f} s", frame, frame - range.first + 1, range.last - range.first + 1, time);
     if (frame > range.first && !pose_scene(prepared, scene_args, time)) log::info("nothing moved: same world");
-    render_image(args, prepared, frame_path(args.output, int(frame)),
-                 args.preview.empty() ? "" : frame_path(args.preview, int(frame)), time);
+    if (!render_image(args, prepared, frame_path(args.output, int(frame)),
+                      args.preview.empty() ? "" : frame_path(args.preview, int(frame)), time)) {
+      log::warn("interrupted: frames after {} not rendered", frame);
+      return;
+    }
   }
   log::info("rendered {} frames in {:.1f} s", range.last - range.first + 1, seconds_since(t0));
 }

@@ -7,22 +7,27 @@ namespace prism {
 
 int adaptive_min_samples(double threshold) { return std::max(16, int(std::ceil(4.0 / std::sqrt(threshold)))); }
 
-double adaptive_error(const Film& film, size_t p, double image_mean_y) {
-  const double scale = film.mean_y(p) * image_mean_y;
-  const double variance = film.variance_of_mean(p);
-  if (variance <= 0) return 0.0;
-  return scale > 0 ? std::sqrt(variance / scale) : HUGE_VAL;
+double adaptive_error(const Film& film, size_t p, const std::array<double, 3>& image_mean) {
+  double error = 0;
+  for (int c = 0; c < 3; ++c) {
+    const double variance = film.variance_of_mean(p, c);
+    if (variance <= 0) continue;
+    const double scale = film.mean(p, c) * image_mean[c];
+    error = std::max(error, scale > 0 ? std::sqrt(variance / scale) : HUGE_VAL);
+  }
+  return error;
 }
 
 void find_unconverged(const Film& film, double threshold, std::vector<uint8_t>& active) {
   const size_t pixels = film.pixel_count();
-  double mean_y = 0;
-  for (size_t p = 0; p < pixels; ++p) mean_y += film.mean_y(p);
-  mean_y /= double(pixels);
+  std::array<double, 3> image_mean{};
+  for (size_t p = 0; p < pixels; ++p)
+    for (int c = 0; c < 3; ++c) image_mean[c] += film.mean(p, c);
+  for (double& m : image_mean) m /= double(pixels);
   const int min_samples = adaptive_min_samples(threshold);
   std::vector<uint8_t> noisy(pixels);
   for (size_t p = 0; p < pixels; ++p)
-    noisy[p] = film.samples(p) < uint32_t(min_samples) || adaptive_error(film, p, mean_y) > threshold;
+    noisy[p] = film.samples(p) < uint32_t(min_samples) || adaptive_error(film, p, image_mean) > threshold;
   const int w = film.width(), h = film.height();
   active.assign(pixels, 0);
   for (int y = 0; y < h; ++y)

@@ -2,14 +2,16 @@
 // Adaptive sampling: after each pass, pixels whose estimated error is below the noise
 // threshold T stop taking samples.
 //
-// A pixel's error is the standard error of its mean luminance, sqrt(Var[Ŷ]), divided by
-// sqrt(Y · Ȳ), Y the pixel's and Ȳ the image's mean luminance. This is Cycles' measure (error over
+// A pixel's error is the largest over X, Y and Z (so that colour noise counts, not only luminance
+// noise) of the standard error of the pixel's mean, sqrt(Var[X̂]), divided by sqrt(X · X̄), X the
+// pixel's and X̄ the image's mean. This is Cycles' measure (error over
 // the square root of the pixel's value: the noise a viewer sees through a display curve, so dark
 // pixels are not chased to a relative precision nobody sees) made independent of exposure by Ȳ:
 // scaling the image leaves it unchanged. A pixel stops only when the largest error in its 3×3
 // neighbourhood is below T (as Cycles filters its convergence mask), which makes stopping on a
 // lucky low variance estimate rarer.
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -23,8 +25,8 @@ namespace prism {
 // shows with probability 3/n is seen at least once in n samples with 95% confidence.
 int adaptive_min_samples(double threshold);
 
-// The error of pixel p as defined above, given the image's mean luminance.
-double adaptive_error(const Film& film, size_t p, double image_mean_y);
+// The error of pixel p as defined above, given the image's mean X, Y, Z.
+double adaptive_error(const Film& film, size_t p, const std::array<double, 3>& image_mean);
 
 // active[p] = 1 where pixel p still needs samples under threshold T.
 void find_unconverged(const Film& film, double threshold, std::vector<uint8_t>& active);

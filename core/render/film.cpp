@@ -12,7 +12,7 @@ Film::Film(int width, int height, uint32_t aovs, SpectralBins bins)
       aovs_(aovs),
       bins_(std::move(bins)),
       sum_(pixel_count() * 3, 0),
-      y2_(pixel_count(), 0),
+      sq_(pixel_count() * 3, 0),
       count_(pixel_count(), 0),
       aov_(aovs & (kAovAlbedo | kAovNormal | kAovDepth) ? pixel_count() * kAovFields : 0, 0),
       spectral_(pixel_count() * bins_.count(), 0) {}
@@ -24,7 +24,8 @@ bool Film::add(size_t p, const FilmSample& s) {
   sum[0] += to_fixed(xyz.x);
   sum[1] += to_fixed(xyz.y);
   sum[2] += to_fixed(xyz.z);
-  y2_[p] += to_fixed(double(xyz.y) * xyz.y, kFixedSquareBits);
+  const double v[3] = {xyz.x, xyz.y, xyz.z};
+  for (int c = 0; c < 3; ++c) sq_[p * 3 + c] += to_fixed(v[c] * v[c], kFixedSquareBits);
   ++count_[p];
   if (!aov_.empty() && valid) {
     Fixed* a = &aov_[p * kAovFields];
@@ -48,15 +49,15 @@ void Film::merge(const Film& other) {
   const auto add = [](auto& into, const auto& from) {
     for (size_t i = 0; i < into.size(); ++i) into[i] += from[i];
   };
-  add(sum_, other.sum_), add(y2_, other.y2_), add(count_, other.count_), add(aov_, other.aov_),
+  add(sum_, other.sum_), add(sq_, other.sq_), add(count_, other.count_), add(aov_, other.aov_),
       add(spectral_, other.spectral_);
 }
 
 // s²/n with s² = (Σy² − (Σy)²/n) / (n − 1), the unbiased sample variance, from the exact sums.
-double Film::variance_of_mean(size_t p) const {
+double Film::variance_of_mean(size_t p, int c) const {
   const uint32_t n = count_[p];
   if (n < 2) return 0.0;
-  const double sy = to_double(sum_[p * 3 + 1]), sy2 = to_double(y2_[p], kFixedSquareBits);
+  const double sy = to_double(sum_[p * 3 + c]), sy2 = to_double(sq_[p * 3 + c], kFixedSquareBits);
   return std::max(0.0, (sy2 - sy * sy / n) / (double(n - 1) * n));
 }
 

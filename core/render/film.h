@@ -1,6 +1,6 @@
 #pragma once
 // The film: per pixel, the sum of its CIE XYZ sample estimates (box filter over the pixel's
-// area) and their count, the sum of the squares of the samples' luminance Y for the pixel's
+// area) and their count, the sums of the squares of the samples' X, Y and Z for the pixel's
 // own error, and on request the first-hit AOV sums and spectral bins.
 //
 // Every sum is exact: each sample is rounded once to a fixed-point integer (fixed_point.h) and
@@ -62,8 +62,13 @@ class Film {
   uint32_t samples(size_t p) const { return count_[p]; }
   // Mean luminance Y of pixel p and the estimated variance of that mean: s²/n, with s² the
   // unbiased sample variance of the pixel's samples.
-  double mean_y(size_t p) const { return count_[p] > 0 ? to_double(sum_[p * 3 + 1]) / count_[p] : 0.0; }
-  double variance_of_mean(size_t p) const;
+  // Mean of channel c (0, 1, 2: X, Y, Z) of pixel p's samples, and the estimated variance of that
+  // mean: s²/n, with s² the unbiased sample variance of the pixel's samples.
+  double mean(size_t p, int c) const { return count_[p] > 0 ? to_double(sum_[p * 3 + c]) / count_[p] : 0.0; }
+  double variance_of_mean(size_t p, int c) const;
+  // The same for the luminance Y.
+  double mean_y(size_t p) const { return mean(p, 1); }
+  double variance_of_mean(size_t p) const { return variance_of_mean(p, 1); }
 
   // Interleaved per-pixel means (top row first) of XYZ, of the albedo XYZ and of the normal; the
   // mean depth of the samples that hit (+inf where none did); the spectral bins' mean spectral
@@ -85,11 +90,11 @@ class Film {
   // The raw fields, in a fixed order, for checkpoint files (to write, and to read back).
   template <typename Visit>
   void visit_fields(Visit&& visit) const {
-    visit(sum_), visit(y2_), visit(count_), visit(aov_), visit(spectral_);
+    visit(sum_), visit(sq_), visit(count_), visit(aov_), visit(spectral_);
   }
   template <typename Visit>
   void visit_fields(Visit&& visit) {
-    visit(sum_), visit(y2_), visit(count_), visit(aov_), visit(spectral_);
+    visit(sum_), visit(sq_), visit(count_), visit(aov_), visit(spectral_);
   }
 
  private:
@@ -99,7 +104,7 @@ class Film {
   uint32_t aovs_;
   SpectralBins bins_;
   std::vector<Fixed> sum_;       // XYZ sums
-  std::vector<Fixed> y2_;        // Σ Y², at kFixedSquareBits
+  std::vector<Fixed> sq_;        // Σ X², Σ Y², Σ Z², at kFixedSquareBits
   std::vector<uint32_t> count_;  // samples
   std::vector<Fixed> aov_;       // kAovFields sums per pixel, when AOVs are on
   std::vector<Fixed> spectral_;  // bins_.count() sums per pixel
