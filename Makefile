@@ -10,7 +10,7 @@ SIZE ?= 512
 PACKAGES := cmake make g++ pkg-config libopenexr-dev libopencolorio-dev libtinygltf-dev nlohmann-json3-dev \
             libstb-dev catch2 libtbb-dev libcli11-dev libfmt-dev
 
-.PHONY: all deps build render test bench-rays clean
+.PHONY: all deps build render test test-slurm bench-rays clean
 
 all: build
 
@@ -26,7 +26,11 @@ render: build
 	  --spp $(SPP) --width $(SIZE) --height $(SIZE)
 
 test: build
-	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE slurm
+
+# `prism farm slurm` on a single-node Slurm cluster it starts on this machine (root; skips otherwise).
+test-slurm: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -L slurm
 
 # Prism's BVH against Embree on raybench's ray sets (needs raybench built; see tools/bench_rays.sh).
 bench-rays: build

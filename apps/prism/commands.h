@@ -6,6 +6,8 @@
 namespace prism {
 
 void add_render_command(CLI::App& app);
+void add_merge_command(CLI::App& app);
+void add_farm_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_fresnel_command(CLI::App& app);
 void add_converge_command(CLI::App& app);

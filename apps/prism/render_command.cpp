@@ -6,11 +6,15 @@
 // animation's frames A to B, loading the file once.
 
 #include <chrono>
+#include <cstdio>
+#include <fstream>
 #include <sstream>
 
 #include "apps/prism/commands.h"
+#include "apps/prism/film_image.h"
 #include "apps/prism/frame_sequence.h"
 #include "apps/prism/scene_setup.h"
+#include "base/checksum.h"
 #include "base/clock.h"
 #include "base/error.h"
 #include "base/interrupt.h"
@@ -25,7 +29,7 @@ namespace {
 
 struct RenderArgs {
   SceneArgs scene;
-  std::string output, preview, colorspace = ColorPipeline::kDefaultOutput, aovs, spectral_bins;
+  std::string output, preview, colorspace = ColorPipeline::kDefaultOutput, aovs, spectral_bins, samples, crop;
   bool half = false, quiet = false, verbose = false, resume = false;
   double checkpoint = 0;
   std::string frames;  // "A:B"
@@ -51,61 +55,51 @@ uint32_t parse_aovs(const std::string& text) {
   return aovs;
 }
 
-// Everything that shapes the image but the sample count: a checkpoint resumes only with these.
+// `--samples A:B` and `--crop x0,y0,x1,y1`.
+void parse_part(const RenderArgs& args, RenderOptions& o) {
+  if (!args.samples.empty()) {
+    char colon = 0, rest = 0;
+    if (std::sscanf(args.samples.c_str(), "%d%c%d%c", &o.sample_begin, &colon, &o.sample_end, &rest) != 3 ||
+        colon != ':')
+      fail("--samples '{}': expected A:B (sample indices A to B-1 of the --spp render)", args.samples);
+  }
+  if (!args.crop.empty()) {
+    PixelWindow& c = o.crop;
+    char rest = 0;
+    if (std::sscanf(args.crop.c_str(), "%d,%d,%d,%d%c", &c.x0, &c.y0, &c.x1, &c.y1, &rest) != 4 || c.empty())
+      fail("--crop '{}': expected x0,y0,x1,y1 with x0 < x1 and y0 < y1 (pixels, top row 0, ends exclusive)", args.crop);
+  }
+}
+
+// FNV-1a of the scene file's bytes (its buffers and textures are not included).
+uint64_t scene_hash(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  Checksum sum;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0) sum.add(buffer, uint64_t(in.gcount()));
+  return sum.h;
+}
+
+// Everything that shapes the image but the sample count: a checkpoint resumes, and parts merge,
+// only with these.
 std::string fingerprint(const RenderArgs& args, const Camera& camera, const RenderOptions& o,
                         std::optional<double> time) {
   const SceneArgs& s = args.scene;
   return fmt::format(
-      "scene={} time={} env={} env-map={} env-rotate={} env-scale={} camera={} size={}x{} integrator={} seed={} "
-      "sampler={} wavelengths={} max-depth={} light-sampling={} noise-threshold={} aovs={} spectral-bins={}",
-      std::filesystem::absolute(s.scene).string(), time ? fmt::format("{}", *time) : "-", s.env, s.env_map,
-      s.env_rotate, s.env_scale, s.camera, camera.width(), camera.height(), integrator_name(o.integrator), o.seed,
-      sampler_name(o.sampler), o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf", o.noise_threshold,
-      o.aovs, o.spectral_bins.to_string());
+      "scene={} scene-hash={:016x} time={} env={} env-map={} env-rotate={} env-scale={} camera={} size={}x{} "
+      "integrator={} "
+      "seed={} sampler={} "
+      "wavelengths={} max-depth={} light-sampling={} noise-threshold={} aovs={} spectral-bins={}",
+      std::filesystem::absolute(s.scene).string(), scene_hash(s.scene), time ? fmt::format("{}", *time) : "-", s.env,
+      s.env_map, s.env_rotate, s.env_scale, s.camera, camera.width(), camera.height(), integrator_name(o.integrator),
+      o.seed, sampler_name(o.sampler), o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf",
+      o.noise_threshold, o.aovs, o.spectral_bins.to_string());
 }
 
 // The image's error as the log and the header state it.
 std::string error_summary(const Film& film) {
   return fmt::format("estimated relative RMSE {:.4g} (per pixel: median {:.3g}, 90th percentile {:.3g})",
                      film.estimated_rel_rmse(), film.pixel_rel_rmse_quantile(0.5), film.pixel_rel_rmse_quantile(0.9));
-}
-
-// Planar copy of one field of an interleaved image.
-std::vector<float> plane(const std::vector<float>& interleaved, int fields, int field) {
-  std::vector<float> out(interleaved.size() / fields);
-  for (size_t p = 0; p < out.size(); ++p) out[p] = interleaved[p * fields + field];
-  return out;
-}
-
-// The AOV layers and spectral bins the options ask for.
-std::vector<ExrChannel> extra_channels(const Film& film, const std::string& colorspace) {
-  std::vector<ExrChannel> channels;
-  const auto add_layer = [&](const std::string& layer, const std::vector<float>& image, const char* names) {
-    for (int c = 0; c < 3; ++c) channels.push_back({layer + "." + names[c], plane(image, 3, c)});
-  };
-  if (film.aovs() & kAovAlbedo) {
-    std::vector<float> albedo = film.albedo_image();
-    ColorPipeline::standard().convert(ColorPipeline::kXyz, colorspace, albedo.data(), albedo.size() / 3);
-    add_layer("albedo", albedo, "RGB");
-  }
-  if (film.aovs() & kAovNormal) add_layer("N", film.normal_image(), "XYZ");
-  if (film.aovs() & kAovDepth) channels.push_back({"Z", film.depth_image()});
-  if (film.aovs() & kAovVariance) {
-    std::vector<float> v(film.pixel_count());
-    for (size_t p = 0; p < v.size(); ++p) v[p] = float(film.variance_of_mean(p));
-    channels.push_back({"variance.Y", std::move(v)});
-  }
-  if (film.aovs() & kAovSpp) {
-    std::vector<float> n(film.pixel_count());
-    for (size_t p = 0; p < n.size(); ++p) n[p] = float(film.samples(p));
-    channels.push_back({"spp", std::move(n)});
-  }
-  const SpectralBins& bins = film.bins();
-  if (bins.count() > 0) {
-    const std::vector<float> spectral = film.spectral_image();
-    for (int b = 0; b < bins.count(); ++b) channels.push_back({bins.channel_name(b), plane(spectral, bins.count(), b)});
-  }
-  return channels;
 }
 
 struct SampleCounts {
@@ -124,21 +118,28 @@ SampleCounts sample_counts(const Film& film) {
 }
 
 // Renders the prepared scene to `output` (and `preview`); `time` is the animation time posed.
-// Returns false if a signal interrupted it.
+// With --samples/--crop it writes a part file instead. Returns false if a signal interrupted it.
 bool render_image(const RenderArgs& args, const PreparedScene& prepared, const std::string& output,
                   const std::string& preview, std::optional<double> time) {
   const std::string colorspace = ColorPipeline::standard().canonical_name(args.colorspace);
-  const Chromaticities chromaticities = ColorPipeline::standard().chromaticities(colorspace);
   RenderOptions options = args.options;
   options.progress = !args.quiet;
   options.aovs = parse_aovs(args.aovs);
   if (!args.spectral_bins.empty()) options.spectral_bins = SpectralBins::parse(args.spectral_bins);
+  parse_part(args, options);
+  const bool part = !args.samples.empty() || !args.crop.empty();
   const std::filesystem::path checkpoint = output + ".checkpoint";
+
   const Camera& camera = *prepared.camera;
   const std::string print = fingerprint(args, camera, options, time);
   std::optional<RenderState> resume;
   if (args.resume) {
     resume = load_checkpoint(checkpoint, print);
+    const RenderPart& r = resume->part;
+    if (r.sample_begin != options.sample_begin ||
+        r.sample_end != (options.sample_end ? options.sample_end : options.spp) || r.crop != options.crop)
+      fail("{}: the checkpoint holds samples {}:{} of window {},{},{},{}, not the part asked for", checkpoint.string(),
+           r.sample_begin, r.sample_end, r.crop.x0, r.crop.y0, r.crop.x1, r.crop.y1);
     log::info("resuming {} after pass {} ({} samples)", checkpoint.string(), resume->passes, resume->stats.samples);
   }
 
@@ -159,13 +160,26 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
   const Film& film = result.state.film;
   log::info("{}", result.stats().summary());
   log::info("{}", error_summary(film));
-  const bool complete = result.state.passes >= pass_count(options.spp);
+  const RenderPart& done = result.state.part;
+  const bool complete = result.state.passes >= pass_count(done.sample_end - done.sample_begin);
   if (result.interrupted) log::warn("interrupted after pass {}: writing what it has", result.state.passes);
   if (result.timed_out) log::info("time limit reached after pass {}", result.state.passes);
 
+  if (part) {
+    // A part file holds the exact sums `prism merge` needs; an unfinished part stays a checkpoint.
+    if (!complete) {
+      save_checkpoint(checkpoint, result.state, print);
+      fail("the part stopped before its last sample; {} keeps it: continue with --resume", checkpoint.string());
+    }
+    save_checkpoint(output, result.state, print);
+    std::error_code ec;
+    std::filesystem::remove(checkpoint, ec);
+    std::printf("wrote %s (part: samples %d:%d of %d, merge with `prism merge`)\n", output.c_str(),
+                result.state.part.sample_begin, result.state.part.sample_end, options.spp);
+    return true;
+  }
   const SampleCounts counts = sample_counts(film);
-  ExrImage image{film.width(), film.height(), film.xyz_image(), chromaticities, {}, extra_channels(film, colorspace)};
-  ColorPipeline::standard().convert(ColorPipeline::kXyz, colorspace, image.rgb.data(), image.rgb.size() / 3);
+  ExrImage image = film_image(film, colorspace);
   image.metadata = {
       {"software", std::string("Prism " PRISM_VERSION)},
       {"prism.scene", args.scene.scene},
@@ -281,6 +295,12 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--spectral-bins", args->spectral_bins,
                   "Also write spectral radiance: N equal bins over 360-830 nm, or comma-separated edges in nm "
                   "(channels S0.<nm>nm, OpenEXR spectral layout)");
+  cmd->add_option("--samples", args->samples,
+                  "Render only sample indices A to B-1 (A:B) of the --spp render, into a part file OUTPUT for "
+                  "`prism merge` (README: splitting a render)");
+  cmd->add_option("--crop", args->crop,
+                  "Render only the pixels x0..x1-1, y0..y1-1 (x0,y0,x1,y1) of the frame, into a part file OUTPUT "
+                  "for `prism merge`");
   cmd->add_option("--colorspace", args->colorspace, "Output colour space from data/ocio/config.ocio")
       ->default_val(ColorPipeline::kDefaultOutput);
   cmd->add_option("--preview", args->preview, "Also write an sRGB preview PNG through the OCIO display view");

@@ -11,58 +11,66 @@ Film::Film(int width, int height, uint32_t aovs, SpectralBins bins)
       height_(height),
       aovs_(aovs),
       bins_(std::move(bins)),
-      sum_(pixel_count() * 3, 0.0),
-      mean_(pixel_count() * 3, 0.0),
-      m2_(pixel_count() * 3, 0.0),
+      sum_(pixel_count() * 3, 0),
+      sq_(pixel_count() * 3, 0),
       count_(pixel_count(), 0),
-      aov_(aovs & (kAovAlbedo | kAovNormal | kAovDepth) ? pixel_count() * kAovFields : 0, 0.0),
-      spectral_(pixel_count() * bins_.count(), 0.0) {}
+      aov_(aovs & (kAovAlbedo | kAovNormal | kAovDepth) ? pixel_count() * kAovFields : 0, 0),
+      spectral_(pixel_count() * bins_.count(), 0) {}
 
-void Film::add(size_t p, const FilmSample& s) {
-  const bool finite = std::isfinite(s.xyz.x) && std::isfinite(s.xyz.y) && std::isfinite(s.xyz.z);
-  const Xyz xyz = finite ? s.xyz : Xyz{0, 0, 0};
-  double* sum = &sum_[p * 3];
-  sum[0] += xyz.x;
-  sum[1] += xyz.y;
-  sum[2] += xyz.z;
-  // Welford's update of the mean and of the sum of squared deviations.
-  const uint32_t n = ++count_[p];
-  const double x[3] = {xyz.x, xyz.y, xyz.z};
-  for (int c = 0; c < 3; ++c) {
-    const double delta = x[c] - mean_[p * 3 + c];
-    mean_[p * 3 + c] += delta / n;
-    m2_[p * 3 + c] += delta * (x[c] - mean_[p * 3 + c]);
-  }
-  if (!aov_.empty()) {
-    double* a = &aov_[p * kAovFields];
-    a[0] += s.albedo.x;
-    a[1] += s.albedo.y;
-    a[2] += s.albedo.z;
-    a[3] += s.normal.x;
-    a[4] += s.normal.y;
-    a[5] += s.normal.z;
-    if (s.hit) {
-      a[6] += s.depth;
-      a[7] += 1;
+bool Film::add(size_t p, const FilmSample& s) {
+  const bool valid = fixed_in_range(s.xyz.x) && fixed_in_range(s.xyz.y) && fixed_in_range(s.xyz.z);
+  const Xyz xyz = valid ? s.xyz : Xyz{0, 0, 0};
+  Fixed* sum = &sum_[p * 3];
+  sum[0] += to_fixed(xyz.x);
+  sum[1] += to_fixed(xyz.y);
+  sum[2] += to_fixed(xyz.z);
+  const double v[3] = {xyz.x, xyz.y, xyz.z};
+  for (int c = 0; c < 3; ++c) sq_[p * 3 + c] += to_fixed(v[c] * v[c], kFixedSquareBits);
+  ++count_[p];
+  if (!aov_.empty() && valid) {
+    Fixed* a = &aov_[p * kAovFields];
+    const float values[6] = {s.albedo.x, s.albedo.y, s.albedo.z, s.normal.x, s.normal.y, s.normal.z};
+    if (std::all_of(values, values + 6, [](float v) { return fixed_in_range(v); }))
+      for (int i = 0; i < 6; ++i) a[i] += to_fixed(values[i]);
+    if (s.hit && fixed_in_range(s.depth)) {
+      a[6] += to_fixed(s.depth);
+      a[7] += to_fixed(1.0);
     }
   }
+  return valid;
 }
 
 void Film::add_spectral(size_t p, float lambda, double weighted_radiance) {
   const int bin = bins_.find(lambda);
-  if (bin >= 0 && std::isfinite(weighted_radiance)) spectral_[p * bins_.count() + bin] += weighted_radiance;
+  if (bin >= 0 && fixed_in_range(weighted_radiance)) spectral_[p * bins_.count() + bin] += to_fixed(weighted_radiance);
+}
+
+void Film::merge(const Film& other) {
+  const auto add = [](auto& into, const auto& from) {
+    for (size_t i = 0; i < into.size(); ++i) into[i] += from[i];
+  };
+  add(sum_, other.sum_), add(sq_, other.sq_), add(count_, other.count_), add(aov_, other.aov_),
+      add(spectral_, other.spectral_);
+}
+
+// s²/n with s² = (Σy² − (Σy)²/n) / (n − 1), the unbiased sample variance, from the exact sums.
+double Film::variance_of_mean(size_t p, int c) const {
+  const uint32_t n = count_[p];
+  if (n < 2) return 0.0;
+  const double sy = to_double(sum_[p * 3 + c]), sy2 = to_double(sq_[p * 3 + c], kFixedSquareBits);
+  return std::max(0.0, (sy2 - sy * sy / n) / (double(n - 1) * n));
 }
 
 namespace {
 
 // Per-pixel means of `fields` consecutive sums per pixel, each divided by the pixel's count.
-std::vector<float> means(const std::vector<double>& sums, const std::vector<uint32_t>& count, int fields,
+std::vector<float> means(const std::vector<Fixed>& sums, const std::vector<uint32_t>& count, int fields,
                          const std::vector<double>& scale = {}) {
   std::vector<float> out(sums.size());
   for (size_t p = 0; p < count.size(); ++p)
     for (int f = 0; f < fields; ++f) {
       const double n = std::max<uint32_t>(count[p], 1);
-      out[p * fields + f] = float(sums[p * fields + f] / n * (scale.empty() ? 1.0 : scale[f]));
+      out[p * fields + f] = float(to_double(sums[p * fields + f]) / n * (scale.empty() ? 1.0 : scale[f]));
     }
   return out;
 }
@@ -74,14 +82,16 @@ std::vector<float> Film::xyz_image() const { return means(sum_, count_, 3); }
 std::vector<float> Film::albedo_image() const {
   std::vector<float> out(pixel_count() * 3);
   for (size_t p = 0; p < pixel_count(); ++p)
-    for (int c = 0; c < 3; ++c) out[p * 3 + c] = float(aov_[p * kAovFields + c] / std::max<uint32_t>(count_[p], 1));
+    for (int c = 0; c < 3; ++c)
+      out[p * 3 + c] = float(to_double(aov_[p * kAovFields + c]) / std::max<uint32_t>(count_[p], 1));
   return out;
 }
 
 std::vector<float> Film::normal_image() const {
   std::vector<float> out(pixel_count() * 3);
   for (size_t p = 0; p < pixel_count(); ++p) {
-    const double* a = &aov_[p * kAovFields + 3];
+    const double a[3] = {to_double(aov_[p * kAovFields + 3]), to_double(aov_[p * kAovFields + 4]),
+                         to_double(aov_[p * kAovFields + 5])};
     const double length = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
     for (int c = 0; c < 3; ++c) out[p * 3 + c] = length > 0 ? float(a[c] / length) : 0.f;
   }
@@ -91,7 +101,7 @@ std::vector<float> Film::normal_image() const {
 std::vector<float> Film::depth_image() const {
   std::vector<float> out(pixel_count());
   for (size_t p = 0; p < pixel_count(); ++p) {
-    const double* a = &aov_[p * kAovFields + 6];
+    const double a[2] = {to_double(aov_[p * kAovFields + 6]), to_double(aov_[p * kAovFields + 7])};
     out[p] = a[1] > 0 ? float(a[0] / a[1]) : std::numeric_limits<float>::infinity();
   }
   return out;

@@ -1,18 +1,20 @@
 #pragma once
 // The film: per pixel, the sum of its CIE XYZ sample estimates (box filter over the pixel's
-// area) and their count, the running mean and spread of the samples' X, Y and Z for the pixel's
-// own error (Welford 1962, "Note on a method for calculating corrected sums of squares
-// and products", Technometrics 4(3)), and on request the first-hit AOV sums and spectral bins.
+// area) and their count, the sums of the squares of the samples' X, Y and Z for the pixel's
+// own error, and on request the first-hit AOV sums and spectral bins.
 //
-// Summation order is fixed: a pixel's samples are added one by one in sample-index order, by
-// the one thread that owns the pixel during a pass. So the film after any set of passes is a
-// pure function of each pixel's sample count, whatever the thread count, the pass split or a
-// save and reload in between (the checkpoint file holds these fields exactly).
+// Every sum is exact: each sample is rounded once to a fixed-point integer (fixed_point.h) and
+// integers add associatively. So a film is a pure function of WHICH samples each pixel took,
+// whatever their order, the thread count, the pass split, a save and reload in between, or a
+// split into sample ranges and tiles rendered apart and merged (Film::merge): the merged
+// image equals the single render bit for bit. A sample whose XYZ lies outside the fixed-point
+// range (|value| >= kFixedLimit) counts as invalid, like NaN and Inf, and is added as 0.
 
 #include <cstdint>
 #include <vector>
 
 #include "base/vec.h"
+#include "render/fixed_point.h"
 #include "render/spectral_bins.h"
 #include "spectral/rgb.h"
 
@@ -43,22 +45,27 @@ class Film {
   uint32_t aovs() const { return aovs_; }
   const SpectralBins& bins() const { return bins_; }
 
-  // Adds one sample of pixel p (index y·width + x). A NaN or Inf estimate counts as a sample
-  // of 0 (the caller counts it as invalid).
-  void add(size_t p, const FilmSample& s);
+  // Adds one sample of pixel p (index y·width + x). A NaN, Inf or out-of-range estimate counts
+  // as a sample of 0; returns false for it (the caller counts it as invalid).
+  bool add(size_t p, const FilmSample& s);
+  // Adds every sum and count of `other` (a film of the same size, AOVs and bins) to this one.
+  void merge(const Film& other);
+  bool same_layout(const Film& other) const {
+    return width_ == other.width_ && height_ == other.height_ && aovs_ == other.aovs_ &&
+           bins_.to_string() == other.bins_.to_string();
+  }
   // Adds the spectral radiance estimate L(λ)/p(λ) of one wavelength lane to its bin. Lanes a
   // dispersive interface terminated (pdf 0) carry no estimate and must not be added (pbrt-v4
   // PR 550).
   void add_spectral(size_t p, float lambda, double weighted_radiance);
 
   uint32_t samples(size_t p) const { return count_[p]; }
+  // Mean luminance Y of pixel p and the estimated variance of that mean: s²/n, with s² the
+  // unbiased sample variance of the pixel's samples.
   // Mean of channel c (0, 1, 2: X, Y, Z) of pixel p's samples, and the estimated variance of that
   // mean: s²/n, with s² the unbiased sample variance of the pixel's samples.
-  double mean(size_t p, int c) const { return mean_[p * 3 + c]; }
-  double variance_of_mean(size_t p, int c) const {
-    const uint32_t n = count_[p];
-    return n > 1 ? m2_[p * 3 + c] / (double(n - 1) * n) : 0.0;
-  }
+  double mean(size_t p, int c) const { return count_[p] > 0 ? to_double(sum_[p * 3 + c]) / count_[p] : 0.0; }
+  double variance_of_mean(size_t p, int c) const;
   // The same for the luminance Y.
   double mean_y(size_t p) const { return mean(p, 1); }
   double variance_of_mean(size_t p) const { return variance_of_mean(p, 1); }
@@ -83,11 +90,11 @@ class Film {
   // The raw fields, in a fixed order, for checkpoint files (to write, and to read back).
   template <typename Visit>
   void visit_fields(Visit&& visit) const {
-    visit(sum_), visit(mean_), visit(m2_), visit(count_), visit(aov_), visit(spectral_);
+    visit(sum_), visit(sq_), visit(count_), visit(aov_), visit(spectral_);
   }
   template <typename Visit>
   void visit_fields(Visit&& visit) {
-    visit(sum_), visit(mean_), visit(m2_), visit(count_), visit(aov_), visit(spectral_);
+    visit(sum_), visit(sq_), visit(count_), visit(aov_), visit(spectral_);
   }
 
  private:
@@ -96,11 +103,11 @@ class Film {
   int width_, height_;
   uint32_t aovs_;
   SpectralBins bins_;
-  std::vector<double> sum_;        // XYZ sums
-  std::vector<double> mean_, m2_;  // Welford: XYZ means and Σ squared deviations
-  std::vector<uint32_t> count_;    // samples
-  std::vector<double> aov_;        // kAovFields sums per pixel, when AOVs are on
-  std::vector<double> spectral_;   // bins_.count() sums per pixel
+  std::vector<Fixed> sum_;       // XYZ sums
+  std::vector<Fixed> sq_;        // Σ X², Σ Y², Σ Z², at kFixedSquareBits
+  std::vector<uint32_t> count_;  // samples
+  std::vector<Fixed> aov_;       // kAovFields sums per pixel, when AOVs are on
+  std::vector<Fixed> spectral_;  // bins_.count() sums per pixel
 };
 
 }  // namespace prism

@@ -95,13 +95,12 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
     for (int x = x0; x < x1; ++x) {
       const size_t p = size_t(y) * camera.width() + x;
       if (!active.empty() && !active[p]) continue;
-      for (int s = int(film.samples(p)); s < end; ++s) {
+      for (int s = options.sample_begin + int(film.samples(p)); s < end; ++s) {
         const CameraSample<N> c = camera_sample<N>(world, camera, options, radiance, sampler, {x, y}, s, stats.rays);
         FilmSample fs{c.xyz};
         if (first_hits) first_hit<N>(world, c.ray, c.lambda, fs);
         ++stats.samples;
-        if (!(std::isfinite(c.xyz.x) && std::isfinite(c.xyz.y) && std::isfinite(c.xyz.z))) ++stats.invalid;
-        film.add(p, fs);
+        if (!film.add(p, fs)) ++stats.invalid;
         if (bins)
           for (int i = 0; i < N; ++i)
             if (c.lambda.pdf()[i] > 0) film.add_spectral(p, c.lambda[i], double(c.L[i]) / (c.lambda.pdf()[i] * N));
@@ -118,15 +117,23 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
   RenderState& state = result.state;
   const int tiles_x = (camera.width() + kTileSize - 1) / kTileSize;
   const int tiles_y = (camera.height() + kTileSize - 1) / kTileSize;
-  const int passes = pass_count(options.spp);
+  const int sample_end = options.sample_end > 0 ? options.sample_end : options.spp;
+  const int part_spp = sample_end - options.sample_begin;
+  const int passes = pass_count(part_spp);
+  state.part = {options.sample_begin, sample_end, options.spp, options.crop};
   Progress progress("render", int64_t(passes - std::min(state.passes, passes)) * tiles_x * tiles_y, options.progress);
   std::mutex stats_mutex;
   std::vector<uint8_t> active;  // empty: all pixels
+  if (!options.crop.empty()) {
+    active.resize(state.film.pixel_count());
+    for (int y = 0; y < camera.height(); ++y)
+      for (int x = 0; x < camera.width(); ++x) active[size_t(y) * camera.width() + x] = options.crop.contains(x, y);
+  }
   const auto start = std::chrono::steady_clock::now();
   const double seconds_before = state.stats.seconds;
   ThreadLimit limit(options.threads);
   while (state.passes < passes) {
-    const int end = pass_end(state.passes, options.spp);
+    const int end = options.sample_begin + pass_end(state.passes, part_spp);
     if (options.noise_threshold > 0) {
       find_unconverged(state.film, options.noise_threshold, active);
       if (std::find(active.begin(), active.end(), 1) == active.end()) {  // every pixel converged
@@ -183,6 +190,15 @@ RenderResult render(const World& world, const Camera& camera, const RenderOption
   if (options.spp <= 0) fail("samples per pixel must be positive (got {})", options.spp);
   if (!(options.noise_threshold >= 0))
     fail("the noise threshold must be non-negative (got {})", options.noise_threshold);
+  const int sample_end = options.sample_end > 0 ? options.sample_end : options.spp;
+  if (options.sample_begin < 0 || options.sample_begin >= sample_end || sample_end > options.spp)
+    fail("the sample range {}:{} is empty or not inside 0:{} (--spp)", options.sample_begin, sample_end, options.spp);
+  const PixelWindow& c = options.crop;
+  if (!c.empty() && (c.x0 < 0 || c.y0 < 0 || c.x1 > camera.width() || c.y1 > camera.height()))
+    fail("the crop window {},{},{},{} is not inside the {}x{} frame", c.x0, c.y0, c.x1, c.y1, camera.width(),
+         camera.height());
+  if (options.noise_threshold > 0 && (options.sample_begin > 0 || !c.empty()))
+    fail("adaptive sampling (a noise threshold) cannot be split into sample ranges or crop windows");
   if (resume && (resume->film.width() != camera.width() || resume->film.height() != camera.height()))
     fail("the state to resume is {}x{}, the camera {}x{}", resume->film.width(), resume->film.height(), camera.width(),
          camera.height());

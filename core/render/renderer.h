@@ -20,9 +20,27 @@ namespace prism {
 
 enum class IntegratorKind { path, whitted };
 
+// A window of pixels [x0, x1) × [y0, y1) of the frame; empty: the whole frame.
+struct PixelWindow {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+  bool contains(int x, int y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
+  bool operator==(const PixelWindow&) const = default;
+};
+
+// Which part of a render a state holds: sample indices [sample_begin, sample_end) of the pixels
+// in `crop` (merge.h joins parts into the whole).
+struct RenderPart {
+  int sample_begin = 0, sample_end = 0, total = 0;
+  PixelWindow crop;
+  bool operator==(const RenderPart&) const = default;
+};
+
 struct RenderOptions {
   IntegratorKind integrator = IntegratorKind::path;
-  int spp = 16;  // samples per pixel; with a noise threshold, the most any pixel takes
+  int spp = 16;                          // samples per pixel; with a noise threshold, the most any pixel takes
+  int sample_begin = 0, sample_end = 0;  // a part of the render: sample indices [begin, end) (end 0: spp)
+  PixelWindow crop;                      // a part of the render: these pixels only (empty: all)
   uint64_t seed = 0;
   int threads = 0;                        // 0: all hardware threads
   int wavelengths = kDefaultWavelengths;  // per path: 1, 4 or 8
@@ -48,8 +66,11 @@ struct RenderStats {
 
 // Everything a render has done so far: enough to continue it (checkpoint.h).
 struct RenderState {
+  explicit RenderState(Film f) : film(std::move(f)) {}
   Film film;
   int passes = 0;  // completed
+  RenderPart part;
+  std::string fingerprint;  // as loaded from a checkpoint or part file (checkpoint.h)
   RenderStats stats{};
 };
 

@@ -1,0 +1,58 @@
+#include "apps/prism/film_image.h"
+
+namespace prism {
+
+namespace {
+
+// Planar copy of one field of an interleaved image.
+std::vector<float> plane(const std::vector<float>& interleaved, int fields, int field) {
+  std::vector<float> out(interleaved.size() / fields);
+  for (size_t p = 0; p < out.size(); ++p) out[p] = interleaved[p * fields + field];
+  return out;
+}
+
+}  // namespace
+
+// The AOV layers and spectral bins the options ask for.
+std::vector<ExrChannel> extra_channels(const Film& film, const std::string& colorspace) {
+  std::vector<ExrChannel> channels;
+  const auto add_layer = [&](const std::string& layer, const std::vector<float>& image, const char* names) {
+    for (int c = 0; c < 3; ++c) channels.push_back({layer + "." + names[c], plane(image, 3, c)});
+  };
+  if (film.aovs() & kAovAlbedo) {
+    std::vector<float> albedo = film.albedo_image();
+    ColorPipeline::standard().convert(ColorPipeline::kXyz, colorspace, albedo.data(), albedo.size() / 3);
+    add_layer("albedo", albedo, "RGB");
+  }
+  if (film.aovs() & kAovNormal) add_layer("N", film.normal_image(), "XYZ");
+  if (film.aovs() & kAovDepth) channels.push_back({"Z", film.depth_image()});
+  if (film.aovs() & kAovVariance) {
+    std::vector<float> v(film.pixel_count());
+    for (size_t p = 0; p < v.size(); ++p) v[p] = float(film.variance_of_mean(p));
+    channels.push_back({"variance.Y", std::move(v)});
+  }
+  if (film.aovs() & kAovSpp) {
+    std::vector<float> n(film.pixel_count());
+    for (size_t p = 0; p < n.size(); ++p) n[p] = float(film.samples(p));
+    channels.push_back({"spp", std::move(n)});
+  }
+  const SpectralBins& bins = film.bins();
+  if (bins.count() > 0) {
+    const std::vector<float> spectral = film.spectral_image();
+    for (int b = 0; b < bins.count(); ++b) channels.push_back({bins.channel_name(b), plane(spectral, bins.count(), b)});
+  }
+  return channels;
+}
+
+ExrImage film_image(const Film& film, const std::string& colorspace) {
+  ExrImage image{film.width(),
+                 film.height(),
+                 film.xyz_image(),
+                 ColorPipeline::standard().chromaticities(colorspace),
+                 {},
+                 extra_channels(film, colorspace)};
+  ColorPipeline::standard().convert(ColorPipeline::kXyz, colorspace, image.rgb.data(), image.rgb.size() / 3);
+  return image;
+}
+
+}  // namespace prism

@@ -1,0 +1,58 @@
+// `prism merge PARTS... -o OUT.exr`: joins the part files of a split render (`prism render
+// --samples A:B`, `--crop`) into the image the single render would have written, bit for bit,
+// after checking the parts belong together and cover the render exactly once (render/merge.h).
+
+#include <cstdio>
+
+#include "apps/prism/commands.h"
+#include "apps/prism/film_image.h"
+#include "base/error.h"
+#include "render/checkpoint.h"
+#include "render/merge.h"
+
+namespace prism {
+
+namespace {
+
+struct MergeArgs {
+  std::vector<std::string> parts;
+  std::string output, colorspace = ColorPipeline::kDefaultOutput;
+  bool half = false;
+};
+
+void run(const MergeArgs& args) {
+  const std::string colorspace = ColorPipeline::standard().canonical_name(args.colorspace);
+  std::vector<NamedState> parts;
+  for (const std::string& file : args.parts) parts.push_back({file, load_render_state(file)});
+  const RenderState merged = merge_parts(parts);
+  ExrImage image = film_image(merged.film, colorspace);
+  image.metadata = {
+      {"software", std::string("Prism " PRISM_VERSION)},
+      {"prism.spp", merged.part.total},
+      {"prism.mergedParts", int(parts.size())},
+      {"prism.renderOptions", merged.fingerprint},
+      {"prism.seconds", merged.stats.seconds},
+      {"prism.invalidSamples", std::to_string(merged.stats.invalid_samples)},
+      {"prism.colorSpace", colorspace},
+      {"prism.estimatedRelRmse", merged.film.estimated_rel_rmse()},
+  };
+  write_exr(args.output, image, args.half);
+  std::printf("wrote %s (%dx%d, %d spp from %zu parts, %s)\n", args.output.c_str(), merged.film.width(),
+              merged.film.height(), merged.part.total, parts.size(), colorspace.c_str());
+}
+
+}  // namespace
+
+void add_merge_command(CLI::App& app) {
+  auto args = std::make_shared<MergeArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "merge", "Merge the part files of a split render into the OpenEXR image the single render makes");
+  cmd->add_option("parts", args->parts, "Part files written by `prism render --samples/--crop`")->required();
+  cmd->add_option("-o,--output", args->output, "Output OpenEXR file")->required();
+  cmd->add_option("--colorspace", args->colorspace, "Output colour space from data/ocio/config.ocio")
+      ->default_val(ColorPipeline::kDefaultOutput);
+  cmd->add_flag("--half", args->half, "Write 16-bit half floats instead of 32-bit floats (beauty only)");
+  cmd->callback([args] { run(*args); });
+}
+
+}  // namespace prism

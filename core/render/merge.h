@@ -1,0 +1,24 @@
+#pragma once
+// Joins the parts of a split render (sample ranges [A, B) of a TOTAL-spp render, crop windows,
+// or both; each part a render state as checkpoint.h saves it) into the state of the whole
+// render. The film's sums are exact (fixed_point.h), so the merged film equals the film of the
+// single-process render with the same seed and TOTAL bit for bit, whatever the split.
+
+#include <filesystem>
+#include <vector>
+
+#include "render/renderer.h"
+
+namespace prism {
+
+struct NamedState {
+  std::filesystem::path file;
+  RenderState state;
+};
+
+// Fails, naming the part files and what is wrong, unless the parts were rendered with the same
+// fingerprint (scene, options, seed), size and TOTAL, and their (crop, range) pairs cover every
+// pixel's samples [0, TOTAL) exactly once.
+RenderState merge_parts(const std::vector<NamedState>& parts);
+
+}  // namespace prism

@@ -1,0 +1,114 @@
+// Split renders: sample ranges (`--samples A:B`) and tiles (`--crop`) rendered as separate
+// processes and joined by `prism merge` give the single render's image bit for bit, at any
+// thread count; merge refuses parts that do not belong together or do not cover the render,
+// and then writes nothing.
+
+#include <fmt/format.h>
+
+#include <catch2/catch.hpp>
+#include <cstring>
+#include <fstream>
+
+#include "render/image_output.h"
+#include "support/test_scenes.h"
+
+using namespace prism;
+
+namespace {
+
+const std::string kCornell = "\"" PRISM_SOURCE_DIR "/data/scenes/cornell.gltf\"";
+constexpr int kSpp = 7;
+
+std::string render_args(int threads, uint64_t seed = 5) {
+  return fmt::format("render {} --width 32 --spp {} --seed {} --threads {} --aov variance,albedo -q", kCornell, kSpp,
+                     seed, threads);
+}
+
+// Every channel of an EXR image, as bytes.
+std::vector<char> pixels(const std::filesystem::path& exr) {
+  std::vector<char> bytes;
+  for (const char* name : {"R", "G", "B", "variance.Y", "albedo.R", "albedo.G", "albedo.B"}) {
+    const std::vector<float> c = read_exr_channel(exr, name);
+    const char* p = reinterpret_cast<const char*>(c.data());
+    bytes.insert(bytes.end(), p, p + c.size() * sizeof(float));
+  }
+  return bytes;
+}
+
+// Renders the parts (extra arguments each) and merges them; returns the merge's exit code.
+int render_and_merge(const std::filesystem::path& dir, const std::vector<std::string>& parts, int threads,
+                     const std::filesystem::path& out, std::string* err = nullptr) {
+  std::string files;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    const std::filesystem::path part = dir / fmt::format("part{}.prism-part", i);
+    REQUIRE(test::run_prism(render_args(threads) + " " + parts[i] + " -o \"" + part.string() + "\"") == 0);
+    files += " \"" + part.string() + "\"";
+  }
+  return test::run_prism("merge" + files + " -o \"" + out.string() + "\"", err);
+}
+
+// [0, kSpp) cut into n ranges of nearly equal size.
+std::vector<std::string> sample_ranges(int n) {
+  std::vector<std::string> parts;
+  for (int i = 0; i < n; ++i) parts.push_back(fmt::format("--samples {}:{}", i * kSpp / n, (i + 1) * kSpp / n));
+  return parts;
+}
+
+}  // namespace
+
+TEST_CASE("merge: sample ranges and tiles merge bit-identical to the single render", "[cli][merge]") {
+  const auto dir = test::temp_dir("merge_exact");
+  for (int threads : {1, 2}) {
+    const std::filesystem::path single = dir / fmt::format("single{}.exr", threads);
+    REQUIRE(test::run_prism(render_args(threads) + " -o \"" + single.string() + "\"") == 0);
+    const std::vector<char> expected = pixels(single);
+    for (int n : {1, 2, 3, 7}) {
+      INFO(n << " sample ranges, " << threads << " threads");
+      const std::filesystem::path merged = dir / "merged.exr";
+      REQUIRE(render_and_merge(dir, sample_ranges(n), threads, merged) == 0);
+      CHECK(pixels(merged) == expected);
+    }
+    INFO("4 tiles, the last two split again into sample ranges, " << threads << " threads");
+    const std::filesystem::path merged = dir / "tiles.exr";
+    REQUIRE(render_and_merge(dir,
+                             {"--crop 0,0,16,16", "--crop 16,0,32,16", "--crop 0,16,16,32 --samples 0:3",
+                              "--crop 0,16,16,32 --samples 3:7", "--crop 16,16,32,32"},
+                             threads, merged) == 0);
+    CHECK(pixels(merged) == expected);
+  }
+}
+
+TEST_CASE("merge: refuses parts that do not make the render, and writes nothing", "[cli][merge]") {
+  const auto dir = test::temp_dir("merge_refuse");
+  const auto part = [&](const std::string& name, const std::string& args) {
+    const std::filesystem::path file = dir / name;
+    REQUIRE(test::run_prism(args + " -o \"" + file.string() + "\"") == 0);
+    return " \"" + file.string() + "\"";
+  };
+  const std::string a = part("a", render_args(2) + " --samples 0:3"), b = part("b", render_args(2) + " --samples 3:7"),
+                    overlap = part("overlap", render_args(2) + " --samples 2:5"),
+                    seed = part("seed", render_args(2, 6) + " --samples 3:7"),
+                    scene = part("scene", fmt::format("render \"{}/data/scenes/dispersion.gltf\" --width 32 "
+                                                      "--spp {} --seed 5 --aov variance,albedo -q --samples 3:7",
+                                                      PRISM_SOURCE_DIR, kSpp));
+  const std::filesystem::path corrupt = dir / "corrupt";
+  std::filesystem::copy_file(dir / "b", corrupt);
+  {
+    std::fstream f(corrupt, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(std::streamoff(std::filesystem::file_size(corrupt) / 2));
+    f.put('\x5a');
+  }
+  const std::filesystem::path out = dir / "out.exr";
+  const auto refuses = [&](const std::string& files, const std::string& message) {
+    std::string err;
+    CHECK(test::run_prism("merge" + files + " -o \"" + out.string() + "\"", &err) == 1);
+    CHECK_THAT(err, Catch::Contains(message));
+    CHECK_FALSE(std::filesystem::exists(out));
+  };
+  refuses(a, "samples 3:7 of window 0,0,32,32 are missing");
+  refuses(a + b + overlap, "overlap");
+  refuses(a + seed, "seed=6 vs seed=5");
+  refuses(a + scene, "another scene or other options");
+  refuses(a + " \"" + corrupt.string() + "\"", "damaged");
+  CHECK(test::run_prism("merge" + a + b + " -o \"" + out.string() + "\"") == 0);
+}

@@ -1,0 +1,122 @@
+// `prism farm slurm` on a real Slurm cluster: tools/slurm/local_cluster.sh starts a single-node
+// cluster on this machine (as root, as CI runs; the test skips where it cannot), a 4-part array
+// render plus its merge job give the single render's image bit for bit, and after one array
+// task is cancelled mid-run, submitting again renders only the missing part and completes the
+// image. CTest label `slurm` (run by .ci/run after `make test`).
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <thread>
+
+#include "render/image_output.h"
+#include "support/test_scenes.h"
+
+using namespace prism;
+
+namespace {
+
+const std::string kCornell = "\"" PRISM_SOURCE_DIR "/data/scenes/cornell.gltf\"";
+const std::string kCluster = PRISM_SOURCE_DIR "/tools/slurm/local_cluster.sh";
+
+// The standard output of a shell command, and its exit status.
+std::pair<std::string, int> shell(const std::string& command) {
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string out;
+  char buffer[4096];
+  while (size_t n = std::fread(buffer, 1, sizeof(buffer), pipe)) out.append(buffer, n);
+  const int status = pclose(pipe);
+  return {out, WIFEXITED(status) ? WEXITSTATUS(status) : -1};
+}
+
+// Stops the cluster it started, whatever the test's outcome.
+struct Cluster {
+  std::filesystem::path dir;
+  ~Cluster() { shell(fmt::format("'{}' stop '{}'", kCluster, dir.string())); }
+};
+
+// Waits until the queue has no jobs of that name (they ended one way or another).
+void wait_for_queue(const std::string& name = "prism-parts,prism-merge") {
+  const auto start = std::chrono::steady_clock::now();
+  while (!shell("squeue -h -n " + name).first.empty()) {
+    REQUIRE(std::chrono::steady_clock::now() - start < std::chrono::minutes(5));
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+}
+
+std::vector<float> rgb(const std::filesystem::path& exr) {
+  std::vector<float> out;
+  for (const char* c : {"R", "G", "B"}) {
+    const std::vector<float> v = read_exr_channel(exr, c);
+    out.insert(out.end(), v.begin(), v.end());
+  }
+  return out;
+}
+
+bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+}  // namespace
+
+TEST_CASE("slurm: a 4-part array render and its merge job give the single render, and resubmission completes it",
+          "[slurm]") {
+  if (geteuid() != 0) {
+    WARN("SKIPPED: starting a local Slurm cluster needs root (CI runs as root)");
+    return;
+  }
+  const auto dir = test::temp_dir("slurm");
+  Cluster cluster{dir / "cluster"};
+  const auto [started, code] = shell(fmt::format("'{}' start '{}' 2>&1", kCluster, cluster.dir.string()));
+  if (code == 77) {
+    WARN("SKIPPED: no local Slurm cluster here: " << started);
+    return;
+  }
+  REQUIRE(code == 0);
+  setenv("SLURM_CONF", (cluster.dir / "slurm.conf").c_str(), 1);
+
+  const auto farm_and_single = [&](const std::string& name, const std::string& options) {
+    const std::filesystem::path single = dir / (name + ".exr");
+    REQUIRE(test::run_prism(fmt::format("render {} {} -q -o \"{}\"", kCornell, options, single.string())) == 0);
+    return fmt::format("\"{}\" farm slurm {} --parts 4 {} --out \"{}\"", PRISM_EXECUTABLE, kCornell, options,
+                       (dir / name).string());
+  };
+  {
+    INFO("4 parts and the merge");
+    const std::string farm = farm_and_single("whole", "--width 64 --spp 16 --seed 2 --threads 1");
+    const auto [out, status] = shell(farm);
+    INFO(out);
+    REQUIRE(status == 0);
+    CHECK_THAT(out, Catch::Contains("submitted parts job") && Catch::Contains("submitted merge job"));
+    wait_for_queue();
+    REQUIRE(std::filesystem::exists(dir / "whole/image.exr"));
+    CHECK(same_bits(rgb(dir / "whole/image.exr"), rgb(dir / "whole.exr")));
+  }
+  {
+    INFO("one array task cancelled mid-run, then submitted again");
+    const std::string farm = farm_and_single("cancel", "--width 64 --spp 640 --seed 4 --threads 1");
+    REQUIRE(shell(farm).second == 0);
+    std::string task;
+    const auto start = std::chrono::steady_clock::now();
+    while (task.empty()) {
+      REQUIRE(std::chrono::steady_clock::now() - start < std::chrono::minutes(2));
+      task = shell("squeue -h -t R -n prism-parts -o %i | head -n 1 | tr -d '\\n'").first;
+    }
+    REQUIRE(shell("scancel " + task).second == 0);
+    wait_for_queue("prism-parts");  // the merge job waits for a dependency that can never be met
+    CHECK_FALSE(std::filesystem::exists(dir / "cancel/image.exr"));
+    const std::string index = task.substr(task.find('_') + 1);
+    CHECK_FALSE(std::filesystem::exists(dir / ("cancel/part-" + index + ".prism-part")));
+    const auto [out, status] = shell(farm);
+    INFO(out);
+    REQUIRE(status == 0);
+    CHECK_THAT(out, Catch::Contains("array tasks " + index + " of 4") && Catch::Contains("cancelled the earlier"));
+    wait_for_queue();
+    REQUIRE(std::filesystem::exists(dir / "cancel/image.exr"));
+    CHECK(same_bits(rgb(dir / "cancel/image.exr"), rgb(dir / "cancel.exr")));
+  }
+}
