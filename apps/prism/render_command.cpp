@@ -3,6 +3,7 @@
 
 #include "apps/prism/commands.h"
 #include "apps/prism/scene_setup.h"
+#include "base/error.h"
 #include "base/log.h"
 #include "render/image_output.h"
 
@@ -17,7 +18,26 @@ struct RenderArgs {
   RenderOptions options;
 };
 
+// An output path must be a regular file or not exist yet, in a folder (made if missing): never a
+// device, a folder or anything else the final rename would replace. Checked before rendering.
+void check_output(const std::string& path, const char* option) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::symlink_status(path, ec);
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    fail("{}: {} names something other than a regular file; refusing to replace it", path, option);
+  for (fs::path dir = fs::path(path).parent_path(); !dir.empty(); dir = dir.parent_path()) {
+    if (fs::exists(dir, ec)) {
+      if (!fs::is_directory(dir, ec)) fail("{}: {} lies under {}, which is not a folder", path, option, dir.string());
+      break;
+    }
+    if (dir == dir.parent_path()) break;
+  }
+}
+
 void run(const RenderArgs& args) {
+  check_output(args.output, "-o");
+  if (!args.preview.empty()) check_output(args.preview, "--preview");
   if (args.quiet) log::set_level(log::Level::warn);
   const std::string colorspace = ColorPipeline::standard().canonical_name(args.colorspace);
   const Chromaticities chromaticities = ColorPipeline::standard().chromaticities(colorspace);

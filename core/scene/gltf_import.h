@@ -31,12 +31,13 @@ bool all_finite(const std::vector<double>& v);
 // Converts one parsed glTF model into a Scene, checking every index it follows.
 class GltfLoader {
  public:
-  GltfLoader(const tinygltf::Model& model, const std::filesystem::path& file, Scene& scene)
+  GltfLoader(const tinygltf::Model& model, const std::filesystem::path& file, Scene& scene, uint64_t max_instances)
       : model_(model),
         file_(file.string()),
         scene_(scene),
         meshes_(model.meshes.size()),
-        mesh_loaded_(model.meshes.size(), false) {}
+        mesh_loaded_(model.meshes.size(), false),
+        max_instances_(max_instances) {}
 
   void load();
 
@@ -60,6 +61,7 @@ class GltfLoader {
                                            const std::string& context);
   PbrMaterial surface(const tinygltf::Material& m, Rgb base, const std::string& context);
   uint32_t material_index(int gltf_material, const std::string& context);
+  Rgb clamp_emission(const std::array<double, 3>& rgb, const std::string& context);
 
   // meshes (gltf_meshes.cpp)
   const std::vector<uint32_t>& mesh(int index);
@@ -68,7 +70,8 @@ class GltfLoader {
   // nodes (gltf_nodes.cpp)
   Transform local_transform(const tinygltf::Node& node, const std::string& context) const;
   void traverse_scene();
-  void visit(int index, const Transform& parent, std::vector<bool>& on_path);
+  uint64_t count_instances(const std::vector<int>& roots) const;
+  void check_world_bounds(uint32_t mesh, const Transform& world, const std::string& context);
   void add_camera(const tinygltf::Camera& cam, const Transform& world, const std::string& context);
   void add_light(const tinygltf::Light& light, const Transform& world, const std::string& context);
 
@@ -79,6 +82,8 @@ class GltfLoader {
   std::vector<bool> mesh_loaded_;
   std::map<int, uint32_t> material_map_;
   std::map<int, std::shared_ptr<const Image>> images_;
+  std::vector<std::optional<std::pair<Vec3d, Vec3d>>> mesh_bounds_;  // per scene mesh, filled on first use
+  uint64_t max_instances_;
   int default_material_ = -1;
   std::set<std::string> warned_;
 };

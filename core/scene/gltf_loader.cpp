@@ -1,9 +1,9 @@
 #include "scene/gltf_loader.h"
 
 #include <cmath>
-#include <fstream>
 
 #include "base/log.h"
+#include "scene/gltf_file.h"
 #include "scene/gltf_import.h"
 
 namespace prism {
@@ -29,13 +29,6 @@ bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::st
                         const unsigned char* bytes, int size, void*) {
   image->image.assign(bytes, bytes + size);
   return true;
-}
-
-bool is_binary_gltf(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  char magic[4] = {};
-  in.read(magic, 4);
-  return in && std::string(magic, 4) == "glTF";
 }
 
 }  // namespace
@@ -75,21 +68,14 @@ void GltfLoader::warn_once(const std::string& message) {
   if (warned_.insert(message).second) log::warn("{}: {}", file_, message);
 }
 
-Scene load_gltf(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file)) fail("{}: no such file", file.string());
+Scene load_gltf(const std::filesystem::path& file, const GltfLoadOptions& options) {
   tinygltf::TinyGLTF reader;
   reader.SetImageLoader(keep_encoded_image, nullptr);
   tinygltf::Model model;
-  std::string err, warn;
-  const bool ok = is_binary_gltf(file) ? reader.LoadBinaryFromFile(&model, &err, &warn, file.string())
-                                       : reader.LoadASCIIFromFile(&model, &err, &warn, file.string());
-  if (!ok) {
-    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-    fail("{}: not a valid glTF file: {}", file.string(), err.empty() ? "unknown error" : err);
-  }
+  read_gltf_file(reader, model, file, options.allow_external_paths);
   Scene scene;
   scene.source = file;
-  GltfLoader(model, file, scene).load();
+  GltfLoader(model, file, scene, options.max_instances).load();
   return scene;
 }
 

@@ -225,8 +225,8 @@ def build_cases():
         ("glb_header_only", b"glTF" + struct.pack("<II", 2, 12), ""),
         ("glb_magic_only", b"glTF", ""),
         ("glb_truncated", glb(G, bb)[:-10], ""),
-        ("glb_empty_bin", glb(set_path(glb_gltf(), ["buffers", 0, "byteLength"], 0), b""), "buffer"),
-        ("glb_no_bin_chunk", glb(G, b""), "buffer"),
+        ("glb_empty_bin", glb(set_path(glb_gltf(), ["buffers", 0, "byteLength"], 0), b""), "BIN"),
+        ("glb_no_bin_chunk", glb(G, b""), "BIN"),
     ]:
         case(name, "refused", {"scene.glb": data}, scene="scene.glb", mention=[mention] if mention else [])
 
@@ -267,7 +267,7 @@ def build_cases():
     sparse["bufferViews"][1]["byteLength"] = 6
     gltf_case("sparse_index_out_of_range", "refused",
               set_path(copy.deepcopy(sparse), ["accessors", 0, "count"], 1), mention=["sparse"])
-    gltf_case("sparse_count_huge", "refused", set_path(copy.deepcopy(sparse), ["accessors", 0, "sparse", "count"], 2**40))
+    gltf_case("sparse_count_huge", "refused", set_path(copy.deepcopy(sparse), ["accessors", 0, "sparse", "count"], 2**31 - 1))
     gltf_case("sparse_offset_2p64", "refused",
               set_path(copy.deepcopy(sparse), ["accessors", 0, "sparse", "values", "byteOffset"], near))
     bad_index = base_bin()[:36] + struct.pack("<3H", 0, 1, 9) + b"\0\0"
@@ -280,7 +280,6 @@ def build_cases():
     # Materials: silently wrong values that must be errors.
     for name, path, value, mention in [
         ("base_color_3_entries", ["materials", 0, "pbrMetallicRoughness", "baseColorFactor"], [1, 1, 1], "baseColorFactor"),
-        ("base_color_string", ["materials", 0, "pbrMetallicRoughness", "baseColorFactor"], "red", "baseColorFactor"),
         ("emissive_2_entries", ["materials", 0, "emissiveFactor"], [1, 1], "emissiveFactor"),
         ("emissive_negative", ["materials", 0, "emissiveFactor"], [-1, 0, 0], "emissiveFactor"),
         ("emissive_strength_negative", ["materials", 0, "extensions"],
@@ -320,7 +319,7 @@ def build_cases():
         gltf_case(name, "rendered", B(colors=True), binary=base_bin([values, (1, 1, 1), (0.5, 0.5, 0.5)]))
 
     # Transforms that overflow only in world space.
-    gltf_case("scale_overflow", "refused", set_path(B(), ["nodes", 0, "scale"], [1e38, 1e38, 1e38]), mention=["triangle"])
+    gltf_case("scale_overflow", "refused", set_path(B(), ["nodes", 0, "scale"], [1e39, 1e39, 1e39]), mention=["triangle"])
     big = [(x * 3e38, y * 3e38, z) for x, y, z in POSITIONS]
     gltf_case("positions_times_scale", "refused", set_path(B(), ["nodes", 0, "scale"], [10, 10, 10]),
               binary=b"".join(struct.pack("<3f", *p) for p in big) + base_bin()[36:], mention=["triangle"])
@@ -360,7 +359,7 @@ def build_cases():
 
     # Images: lies in headers, huge dimensions, garbage.
     for name, image, mention in [
-        ("image_huge_dimensions", png(100000, 100000, pixels=False), "100000"),
+        ("image_huge_dimensions", png(100000, 100000, pixels=False), "too large"),
         ("image_truncated", png(4, 4)[:40], ""),
         ("image_garbage", b"\x89PNG garbage" * 10, ""),
         ("image_zero_size", png(0, 0), ""),
@@ -410,11 +409,11 @@ def build_cases():
         ("env_nan", ["--env", "nan,1,1"], "--env"),
         ("env_two_values", ["--env", "1,1"], "--env"),
         ("env_map_missing", ["--env-map", "{dir}/absent.exr"], "absent.exr"),
-        ("output_device", ["-o", "/dev/null"], "/dev/null"),
+        ("output_device", ["-o", "{dir}/fifo"], "regular file"),  # never a real device: a regression would replace it
         ("output_directory", ["-o", "{dir}/out"], "out"),
-        ("output_missing_folder", ["-o", "{dir}/nowhere/out.exr"], "nowhere"),
+        ("output_under_a_file", ["-o", "{dir}/scene.gltf/out.exr"], "not a folder"),
         ("preview_directory", ["--preview", "{dir}/out"], "out"),
-        ("preview_device", ["--preview", "/dev/null"], "/dev/null"),
+        ("preview_device", ["--preview", "{dir}/fifo"], "regular file"),
         ("colorspace_unknown", ["--colorspace", "Rec.9999"], "Rec.9999"),
         ("max_memory_tiny", ["--max-memory", "0.000001"], "--max-memory"),
     ]
@@ -427,7 +426,7 @@ def build_cases():
         gltf_case("cli_" + name, "refused", B(), args=args + extra, mention=[mention])
     case("cli_camera_aspect_tiny", "refused",
          {"scene.gltf": json.dumps(set_path(B(), ["cameras", 0, "perspective", "aspectRatio"], 1e-7)).encode(),
-          "tri.bin": base_bin()}, args=[a for a in RENDER if a not in ("--height",)][:-3] + ["--quiet"],
+          "tri.bin": base_bin()}, args=RENDER[:6] + RENDER[8:],
          mention=["--max-memory"])
     sky = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 2\n" + b"\xff\xff\xff\xff" * 2  # FLT_MAX-ish RGBE
     gltf_case("env_map_flt_max", "refused", B(), extra_files={"sky.hdr": sky},
@@ -460,6 +459,8 @@ def write(outdir):
             data = data.replace(b"{secret}", os.path.join(secret, "secret.bin").encode())
             with open(path, "wb") as f:
                 f.write(data)
+        if c["name"] in ("cli_output_device", "cli_preview_device") and not os.path.exists(os.path.join(d, "fifo")):
+            os.mkfifo(os.path.join(d, "fifo"))
         for rel, target in c["links"].items():
             path = os.path.join(d, rel)
             if not os.path.lexists(path):
