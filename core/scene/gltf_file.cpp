@@ -148,8 +148,8 @@ int json_depth(const char* text, size_t size) {
   return deepest;
 }
 
-void read_gltf_file(tinygltf::TinyGLTF& reader, tinygltf::Model& model, const fs::path& file,
-                    bool allow_external_paths) {
+std::string read_gltf_file(tinygltf::TinyGLTF& reader, tinygltf::Model& model, const fs::path& file,
+                           bool allow_external_paths) {
   const std::string name = file.string();
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) fail("{}: no such file", name);
@@ -179,14 +179,14 @@ void read_gltf_file(tinygltf::TinyGLTF& reader, tinygltf::Model& model, const fs
                                     unsigned(bytes.size()), policy.base);
   }
   if (!policy.problem.empty()) fail("{}: {}", name, policy.problem);
-  if (!ok || !error.empty())
-    fail("{}: not a valid glTF file: {}", name, error.empty() ? "unknown error" : one_line(error));
+  if (!ok) fail("{}: not a valid glTF file: {}", name, error.empty() ? "unknown error" : one_line(error));
   if (!warn.empty()) log::warn("{}: {}", name, one_line(warn));
   if (binary)
     for (size_t b = 0; b < model.buffers.size(); ++b)
       if (model.buffers[b].uri.empty() && model.buffers[b].data.size() > bin_length)
         fail("{}: buffer {} claims {} bytes, the GLB's BIN chunk holds {}", name, b, model.buffers[b].data.size(),
              bin_length);
+  return one_line(error);
 }
 
 }  // namespace prism

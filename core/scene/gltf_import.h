@@ -39,7 +39,8 @@ class GltfLoader {
         mesh_loaded_(model.meshes.size(), false),
         max_instances_(max_instances) {}
 
-  void load();
+  // Fails on `parse_errors` (the parser's, in a model it did build) after the extension check.
+  void load(const std::string& parse_errors);
 
  private:
   void check_extensions();

@@ -51,8 +51,9 @@ bool all_finite(const std::vector<double>& v) {
   return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
 }
 
-void GltfLoader::load() {
+void GltfLoader::load(const std::string& parse_errors) {
   check_extensions();
+  if (!parse_errors.empty()) fail("{}: not a valid glTF file: {}", file_, parse_errors);
   traverse_scene();
   if (scene_.instances.empty()) log::warn("{}: the scene has no triangles", file_);
 }
@@ -72,10 +73,10 @@ Scene load_gltf(const std::filesystem::path& file, const GltfLoadOptions& option
   tinygltf::TinyGLTF reader;
   reader.SetImageLoader(keep_encoded_image, nullptr);
   tinygltf::Model model;
-  read_gltf_file(reader, model, file, options.allow_external_paths);
+  const std::string errors = read_gltf_file(reader, model, file, options.allow_external_paths);
   Scene scene;
   scene.source = file;
-  GltfLoader(model, file, scene, options.max_instances).load();
+  GltfLoader(model, file, scene, options.max_instances).load(errors);
   return scene;
 }
 
