@@ -40,6 +40,12 @@ void write_atomically(const std::filesystem::path& file, Write&& write) {
   }
 }
 
+// Image sizes are checked before anything is allocated for them.
+void check_image_size(const std::filesystem::path& file, int64_t width, int64_t height) {
+  if (width < 1 || height < 1 || width * height > int64_t(kMaxImagePixels))
+    fail("{}: a {}x{} image (Prism reads images of 1 to 2^27 pixels)", file.string(), width, height);
+}
+
 }  // namespace
 
 void write_exr(const std::filesystem::path& file, const ExrImage& image, bool half) {
@@ -105,6 +111,7 @@ RgbImage read_exr(const std::filesystem::path& file) {
       if (!in.header().channels().findChannel(name)) throw std::runtime_error("it has no R, G and B channels");
     const Imath::Box2i dw = in.header().dataWindow();
     RgbImage img;
+    check_image_size(file, int64_t(dw.max.x) - dw.min.x + 1, int64_t(dw.max.y) - dw.min.y + 1);
     img.width = dw.max.x - dw.min.x + 1;
     img.height = dw.max.y - dw.min.y + 1;
     const size_t pixels = size_t(img.width) * img.height;
@@ -132,6 +139,7 @@ RgbImage read_hdr(const std::filesystem::path& file) {
   if (!stbi_is_hdr(file.c_str())) fail("{}: not a Radiance HDR (RGBE) image", file.string());
   RgbImage img;
   int channels = 0;
+  if (stbi_info(file.c_str(), &img.width, &img.height, &channels)) check_image_size(file, img.width, img.height);
   float* data = stbi_loadf(file.c_str(), &img.width, &img.height, &channels, 3);
   if (!data) fail("{}: cannot read Radiance HDR image: {}", file.string(), stbi_failure_reason());
   img.rgb.assign(data, data + size_t(img.width) * img.height * 3);
