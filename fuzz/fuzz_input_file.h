@@ -17,7 +17,8 @@ inline std::filesystem::path input_file(const uint8_t* data, size_t size, const 
     return d;
   }();
   const auto file = dir / name;
-  std::ofstream(file, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data), std::streamsize(size));
+  std::ofstream(file, std::ios::binary | std::ios::trunc)
+      .write(reinterpret_cast<const char*>(data), std::streamsize(size));
   return file;
 }
 

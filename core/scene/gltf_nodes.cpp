@@ -56,8 +56,10 @@ void GltfLoader::traverse_scene() {
   for (int root : roots) check_index(root, model_.nodes, "node", "the scene");
   const uint64_t instances = count_instances(roots);
   if (instances > max_instances_)
-    fail("{}: the node hierarchy makes {} mesh instances, more than the {} that fit in memory (see --max-memory)",
-         file_, instances, max_instances_);
+    fail(
+        "{}: the node hierarchy makes {} node visits and mesh instances, more than the {} that fit in memory (see "
+        "--max-memory)",
+        file_, instances, max_instances_);
 
   // Depth-first, parents before children, without recursion: hierarchies may be any depth.
   struct Pending {
@@ -99,9 +101,9 @@ void GltfLoader::traverse_scene() {
     log::warn("{}: skipped {} mesh instances that coincide with another of the same mesh", file_, coincident);
 }
 
-// Mesh instances under `roots`, counted on the node graph (memoised, saturating) before any is
-// made, so that a DAG reaching a mesh 2^63 times is refused at once. Also finds cycles and
-// checks every child index.
+// Node visits plus mesh instances (one per primitive) under `roots`, counted on the node graph
+// (memoised, saturating) before any is made, so that a DAG reaching a node 2^63 times is
+// refused at once, whether or not it holds a mesh. Also finds cycles and checks child indices.
 uint64_t GltfLoader::count_instances(const std::vector<int>& roots) const {
   enum : uint8_t { unseen, open, done };
   std::vector<uint8_t> state(model_.nodes.size(), unseen);
@@ -126,10 +128,10 @@ uint64_t GltfLoader::count_instances(const std::vector<int>& roots) const {
         }
         continue;
       }
-      uint64_t n = 0;
+      uint64_t n = 1;
       if (node.mesh >= 0) {
         check_index(node.mesh, model_.meshes, "mesh", fmt::format("{}: node {} '{}'", file_, index, node.name));
-        n = model_.meshes[node.mesh].primitives.size();
+        n += model_.meshes[node.mesh].primitives.size();
       }
       for (int child : node.children) n = saturating_add(n, count[child]);
       count[index] = n;

@@ -347,7 +347,11 @@ def build_cases():
     levels = 63
     dag["nodes"] += [{"children": [4 + i, 4 + i]} for i in range(levels)] + [{"mesh": 0}]
     dag["scenes"][0]["nodes"] = [1, 2, 3]
-    gltf_case("node_dag_2p63", "refused", dag, mention=["instances", "--max-memory"])
+    gltf_case("node_dag_2p63", "refused", dag, mention=["visits", "--max-memory"])
+    dag_empty = B()  # found by fuzz_gltf: visits of nodes without meshes are work too
+    dag_empty["nodes"] += [{"children": [4 + i, 4 + i]} for i in range(levels)] + [{"name": "leaf"}]
+    dag_empty["scenes"][0]["nodes"] = [1, 2, 3]
+    gltf_case("node_dag_2p63_no_mesh", "refused", dag_empty, mention=["visits", "--max-memory"])
     dag_small = B()
     dag_small["nodes"] += [{"children": [4 + i, 4 + i]} for i in range(30)] + [{"mesh": 0}]
     dag_small["scenes"][0]["nodes"] = [1, 2, 3]
