@@ -36,6 +36,10 @@ void write_png(const std::filesystem::path& file, int width, int height, const s
 // The largest image read_exr and read_hdr accept (2^27 pixels, 1.6 GB of float RGB).
 inline constexpr uint64_t kMaxImagePixels = uint64_t(1) << 27;
 
+// Fails naming `file` unless 1 ≤ width, height and width × height ≤ kMaxImagePixels; called
+// before anything is allocated for the image.
+void check_image_size(const std::filesystem::path& file, int64_t width, int64_t height);
+
 RgbImage read_exr(const std::filesystem::path& file);
 // Reads a Radiance RGBE (.hdr) file as linear floats.
 RgbImage read_hdr(const std::filesystem::path& file);

@@ -440,6 +440,15 @@ def build_cases():
               args=RENDER + ["--env-map", "{dir}/sky.hdr", "--env-scale", "1e38"], mention=["--env-scale"])
     gltf_case("env_map_valid", "rendered", B(), extra_files={"sky.hdr": fine_sky},
               args=RENDER + ["--env-map", "{dir}/sky.hdr", "--env-scale", "2"])
+    # Found by fuzz_env_map: a zero-length run looped forever in stb_image's HDR reader.
+    zero_run = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 16\n\x02\x02\x00\x10\x90\x80\x90\x00\x10"
+    gltf_case("env_map_zero_run", "refused", B(), extra_files={"sky.hdr": zero_run},
+              args=RENDER + ["--env-map", "{dir}/sky.hdr"], mention=["sky.hdr"])
+    gltf_case("env_map_cut_short", "refused", B(), extra_files={"sky.hdr": fine_sky[:-3]},
+              args=RENDER + ["--env-map", "{dir}/sky.hdr"], mention=["sky.hdr"])
+    gltf_case("env_map_huge_header", "refused", B(),
+              extra_files={"sky.hdr": b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 100000\n"},
+              args=RENDER + ["--env-map", "{dir}/sky.hdr"], mention=["100000x100000"])
     gltf_case("env_1e6", "rendered", B(), args=RENDER + ["--env", "1e6,1e6,1e6"])
 
 
