@@ -367,6 +367,8 @@ def build_cases():
         ("image_truncated", png(4, 4)[:40], ""),
         ("image_garbage", b"\x89PNG garbage" * 10, ""),
         ("image_zero_size", png(0, 0), ""),
+        ("image_pnm_16bit", b"P6683 36 36333 ", "PNG or JPEG"),  # crashed stb_image's PNM reader (fuzz_image)
+        ("image_bmp", b"BM" + bytes(60), "PNG or JPEG"),
     ]:
         gltf_case(name, "refused", textured(B(), {"uri": "tex.png"}), extra_files={"tex.png": image},
                   mention=[mention] if mention else ["tex.png"])
