@@ -3,6 +3,9 @@
 #include <stb_image.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 
 #include "base/error.h"
 
@@ -16,6 +19,15 @@ Image::Image(int width, int height, std::vector<uint8_t> rgba)
 
 std::shared_ptr<const Image> Image::decode(const unsigned char* bytes, size_t size, const std::string& what) {
   int w = 0, h = 0, channels = 0;
+  if (size > size_t(std::numeric_limits<int>::max())) fail("{}: encoded image of {} bytes is too large", what, size);
+  // glTF images are PNG or JPEG (glTF 2.0 §3.8.1): stb_image's other decoders (PNM, BMP, TGA,
+  // PSD...) are never reached, and with them their bugs (fuzz_image crashed Debian's PNM reader).
+  const bool png = size >= 8 && std::memcmp(bytes, "\x89PNG\r\n\x1a\n", 8) == 0;
+  const bool jpeg = size >= 3 && std::memcmp(bytes, "\xff\xd8\xff", 3) == 0;
+  if (!png && !jpeg) fail("{}: not a PNG or JPEG image", what);
+  // The header's size, checked before the decoder allocates for it (2^28 texels = 1 GB as RGBA).
+  if (stbi_info_from_memory(bytes, int(size), &w, &h, &channels) && uint64_t(w) * uint64_t(h) > (uint64_t(1) << 28))
+    fail("{}: a {}x{} image is larger than the 2^28 texels Prism accepts", what, w, h);
   unsigned char* data = stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4);
   if (!data)
     fail("{}: cannot decode the image ({})", what, stbi_failure_reason() ? stbi_failure_reason() : "unknown format");

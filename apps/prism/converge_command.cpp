@@ -195,7 +195,8 @@ void run(const ConvergeArgs& args) {
        << fmt::format("x{:.2f}{}", doubling, biased ? " (biased)" : "") << " |\n";
   }
   md << "\nAn unbiased configuration's MSE halves with each doubling of the sample budget (x0.50). One whose MSE "
-        "stops falling (above x0.80), or whose mean error exceeds 2% of the image mean, is biased for this scene (the Whitted tracer omits "
+        "stops falling (above x0.80), or whose mean error exceeds 2% of the image mean, is biased for this scene (the "
+        "Whitted tracer omits "
         "indirect diffuse light and rough reflection), and its time to an error it only passes on the way to its "
         "bias is no speed-up.\n";
   md.close();
@@ -223,7 +224,7 @@ void add_converge_command(CLI::App& app) {
       ->default_val(16)
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")->default_val(0);
-  cmd->add_option("--seed", args->seed, "Random seed")->default_val(0);
+  cmd->add_option("--seed", args->seed, "Random seed")->default_val(0)->check(seed_value());
   cmd->callback([args] { run(*args); });
 }
 

@@ -10,7 +10,6 @@
 #include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
-#include <stb_image.h>
 #include <stb_image_write.h>
 #include <unistd.h>
 
@@ -41,6 +40,11 @@ void write_atomically(const std::filesystem::path& file, Write&& write) {
 }
 
 }  // namespace
+
+void check_image_size(const std::filesystem::path& file, int64_t width, int64_t height) {
+  if (width < 1 || height < 1 || width > int64_t(kMaxImagePixels) || width * height > int64_t(kMaxImagePixels))
+    fail("{}: a {}x{} image (Prism reads images of 1 to 2^27 pixels)", file.string(), width, height);
+}
 
 void write_exr(const std::filesystem::path& file, const ExrImage& image, bool half) {
   if (image.rgb.size() != size_t(image.width) * image.height * 3) fail("{}: image size mismatch", file.string());
@@ -105,6 +109,7 @@ RgbImage read_exr(const std::filesystem::path& file) {
       if (!in.header().channels().findChannel(name)) throw std::runtime_error("it has no R, G and B channels");
     const Imath::Box2i dw = in.header().dataWindow();
     RgbImage img;
+    check_image_size(file, int64_t(dw.max.x) - dw.min.x + 1, int64_t(dw.max.y) - dw.min.y + 1);
     img.width = dw.max.x - dw.min.x + 1;
     img.height = dw.max.y - dw.min.y + 1;
     const size_t pixels = size_t(img.width) * img.height;
@@ -125,18 +130,6 @@ RgbImage read_exr(const std::filesystem::path& file) {
   } catch (const std::exception& e) {
     fail("{}: cannot read OpenEXR image: {}", file.string(), e.what());
   }
-}
-
-RgbImage read_hdr(const std::filesystem::path& file) {
-  // stbi_loadf would also read an 8-bit image, through an assumed gamma: refuse those.
-  if (!stbi_is_hdr(file.c_str())) fail("{}: not a Radiance HDR (RGBE) image", file.string());
-  RgbImage img;
-  int channels = 0;
-  float* data = stbi_loadf(file.c_str(), &img.width, &img.height, &channels, 3);
-  if (!data) fail("{}: cannot read Radiance HDR image: {}", file.string(), stbi_failure_reason());
-  img.rgb.assign(data, data + size_t(img.width) * img.height * 3);
-  stbi_image_free(data);
-  return img;
 }
 
 }  // namespace prism

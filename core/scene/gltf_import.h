@@ -41,7 +41,9 @@ const char* extension_handling(const std::string& extension);
 // at other times of its animations.
 class GltfLoader {
  public:
-  GltfLoader(const tinygltf::Model& model, const std::filesystem::path& file, const GltfOptions& options, Scene& scene);
+  // Fails on `parse_errors` (the parser's, in a model it did build) after the extension check.
+  GltfLoader(const tinygltf::Model& model, const std::filesystem::path& file, const GltfOptions& options, Scene& scene,
+             const std::string& parse_errors);
 
   void load();             // the scene as `options` choose it
   bool pose(double time);  // false: nothing moved
@@ -72,6 +74,7 @@ class GltfLoader {
                                            const std::string& context);
   PbrMaterial surface(const tinygltf::Material& m, Rgb base, const std::string& context);
   uint32_t material_index(int gltf_material, const std::string& context);
+  Rgb clamp_emission(const std::array<double, 3>& rgb, const std::string& context);
 
   // meshes (gltf_meshes.cpp)
   const std::vector<uint32_t>& mesh(int index);
@@ -92,7 +95,8 @@ class GltfLoader {
   // nodes (gltf_nodes.cpp)
   void compute_node_world();
   void traverse_scene();
-  void visit(int index, const Transform& parent, std::vector<bool>& on_path);
+  uint64_t count_instances(const std::vector<int>& roots) const;
+  void check_world_bounds(uint32_t mesh, const Transform& world, const std::string& context);
   void add_camera(const tinygltf::Camera& cam, const Transform& world, const std::string& context);
   void add_light(const tinygltf::Light& light, const Transform& world, const std::string& context);
 
@@ -116,6 +120,8 @@ class GltfLoader {
   std::vector<bool> mesh_loaded_;
   std::map<int, uint32_t> material_map_;
   std::map<int, std::shared_ptr<const Image>> images_;
+  std::vector<std::optional<std::pair<Vec3d, Vec3d>>> mesh_bounds_;  // per scene mesh, filled on first use
+  uint64_t max_instances_;
   int default_material_ = -1;
   std::set<std::string> warned_;
 };

@@ -38,7 +38,8 @@ Material GltfLoader::convert_material(const tinygltf::Material& m, int index) {
     fail("{}: {}: unknown alphaMode '{}'", file_, context, m.alphaMode);
   out.alpha_cutoff = float(m.alphaCutoff);
   const auto& ef = m.emissiveFactor;
-  if (ef.size() != 3 || !all_finite(ef)) fail("{}: {}: emissiveFactor must be 3 finite numbers", file_, context);
+  if (ef.size() != 3 || !all_finite(ef) || *std::min_element(ef.begin(), ef.end()) < 0)
+    fail("{}: {}: emissiveFactor must be 3 finite numbers ≥ 0", file_, context);
   double strength = 1;
   if (const auto it = m.extensions.find("KHR_materials_emissive_strength"); it != m.extensions.end()) {
     const auto& v = it->second.Get("emissiveStrength");
@@ -46,7 +47,7 @@ Material GltfLoader::convert_material(const tinygltf::Material& m, int index) {
     if (!std::isfinite(strength) || strength < 0)
       fail("{}: {}: emissiveStrength must be a non-negative number", file_, context);
   }
-  out.emission_rgb = {float(ef[0] * strength), float(ef[1] * strength), float(ef[2] * strength)};
+  out.emission_rgb = clamp_emission({ef[0] * strength, ef[1] * strength, ef[2] * strength}, context);
   if (out.emission_rgb.max() > 0) {
     out.emission = RgbIlluminantSpectrum(out.emission_rgb);
     out.emission_texture =
@@ -155,6 +156,7 @@ PbrMaterial GltfLoader::surface(const tinygltf::Material& m, Rgb base, const std
   // σ_a = −ln(attenuationColor) / attenuationDistance per channel (world units).
   const double thickness = number("KHR_materials_volume", "thicknessFactor", 0, 0, 1e30);
   const double distance = number("KHR_materials_volume", "attenuationDistance", kInfinity, 0, kInfinity);
+  if (distance == 0) fail("{}: {}: KHR_materials_volume.attenuationDistance must be > 0", file_, context);
   std::optional<Spectrum> absorption;
   if (thickness > 0 && std::isfinite(distance)) {
     Rgb sigma;
@@ -172,6 +174,19 @@ PbrMaterial GltfLoader::surface(const tinygltf::Material& m, Rgb base, const std
     p.metallic = 1;
   }
   return p;
+}
+
+// Emission beyond kMaxEmission (legal glTF, e.g. emissiveStrength 1e38) is clamped with a warning.
+Rgb GltfLoader::clamp_emission(const std::array<double, 3>& rgb, const std::string& context) {
+  Rgb out;
+  for (int c = 0; c < 3; ++c) {
+    if (rgb[c] > kMaxEmission)
+      warn_once(fmt::format("{}: emission or intensity {:g} clamped to {:g}",
+                            context.rfind(file_ + ": ", 0) == 0 ? context.substr(file_.size() + 2) : context, rgb[c],
+                            kMaxEmission));
+    out[c] = float(std::min(rgb[c], double(kMaxEmission)));
+  }
+  return out;
 }
 
 uint32_t GltfLoader::material_index(int gltf_material, const std::string& context) {
