@@ -8,7 +8,8 @@ SPP ?= 64
 SIZE ?= 512
 
 PACKAGES := cmake make g++ pkg-config libopenexr-dev libopencolorio-dev libtinygltf-dev nlohmann-json3-dev \
-            libstb-dev catch2 libtbb-dev libcli11-dev libfmt-dev
+            libstb-dev catch2 libtbb-dev libcli11-dev libfmt-dev \
+            libdraco-dev libmeshoptimizer-dev libwebp-dev
 
 .PHONY: all deps build render test bench-rays clean
 

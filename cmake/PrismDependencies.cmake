@@ -30,6 +30,12 @@ find_package(fmt CONFIG QUIET)
 prism_require(fmt_FOUND libfmt-dev)
 pkg_check_modules(STB QUIET IMPORTED_TARGET stb)
 prism_require(STB_FOUND libstb-dev)
+find_package(draco CONFIG QUIET)  # KHR_draco_mesh_compression
+prism_require(draco_FOUND libdraco-dev)
+find_package(meshoptimizer CONFIG QUIET)  # EXT_/KHR_meshopt_compression
+prism_require(meshoptimizer_FOUND libmeshoptimizer-dev)
+pkg_check_modules(WEBP QUIET IMPORTED_TARGET libwebp)  # EXT_texture_webp
+prism_require(WEBP_FOUND libwebp-dev)
 if(PRISM_BUILD_TESTS)
   find_package(Catch2 2 CONFIG QUIET)
   prism_require(Catch2_FOUND catch2)

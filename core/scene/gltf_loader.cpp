@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "base/log.h"
+#include "scene/gltf_compression.h"
 #include "scene/gltf_import.h"
 
 namespace prism {
@@ -21,6 +23,9 @@ const std::set<std::string> kSupportedExtensions = {
     "KHR_materials_specular",
     "KHR_texture_transform",
     "KHR_mesh_quantization",
+    "KHR_draco_mesh_compression",
+    "EXT_meshopt_compression",
+    "KHR_meshopt_compression",
 };
 
 // Images are kept encoded at load time and decoded only when a material that the scene's
@@ -75,18 +80,44 @@ void GltfLoader::warn_once(const std::string& message) {
   if (warned_.insert(message).second) log::warn("{}: {}", file_, message);
 }
 
+namespace {
+
+// The file's first extension in extensionsRequired that Prism lacks, or "".
+std::string unsupported_required_extension(const std::string& json) {
+  const auto doc = nlohmann::json::parse(json, nullptr, false);
+  if (!doc.is_object() || !doc.contains("extensionsRequired") || !doc["extensionsRequired"].is_array()) return {};
+  for (const auto& ext : doc["extensionsRequired"])
+    if (ext.is_string() && !kSupportedExtensions.count(ext.get<std::string>())) return ext.get<std::string>();
+  return {};
+}
+
+}  // namespace
+
 Scene load_gltf(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file)) fail("{}: no such file", file.string());
+  std::ifstream in(file, std::ios::binary);
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in && !in.eof()) fail("{}: cannot read the file", file.string());
+  bytes = prepare_compressed_gltf(std::move(bytes), file.string());
+  if (bytes.size() > UINT32_MAX) fail("{}: the file is larger than 4 GiB", file.string());
   tinygltf::TinyGLTF reader;
   reader.SetImageLoader(keep_encoded_image, nullptr);
   tinygltf::Model model;
   std::string err, warn;
-  const bool ok = is_binary_gltf(file) ? reader.LoadBinaryFromFile(&model, &err, &warn, file.string())
-                                       : reader.LoadASCIIFromFile(&model, &err, &warn, file.string());
+  const std::string base_dir = file.parent_path().string();
+  const bool ok = is_binary_gltf(file)
+                      ? reader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir)
+                      : reader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                                   unsigned(bytes.size()), base_dir);
   if (!ok) {
+    // A required extension the parser cannot follow (its data elsewhere) is the real cause.
+    if (const std::string ext = unsupported_required_extension(gltf_json_text(bytes)); !ext.empty())
+      fail("{}: requires extension {}, which Prism does not support", file.string(), ext);
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
     fail("{}: not a valid glTF file: {}", file.string(), err.empty() ? "unknown error" : err);
   }
+  decode_meshopt(model, file.string());
+  decode_draco(model, file.string());
   Scene scene;
   scene.source = file;
   GltfLoader(model, file, scene).load();
