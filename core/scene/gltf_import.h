@@ -2,6 +2,7 @@
 // The glTF importer's inside, shared by its files (not a public header):
 //   gltf_loader.cpp     reading the file, the extensions Prism honours, the import's order
 //   gltf_materials.cpp  materials, textures and images
+//   gltf_material_models.cpp  KHR_materials_unlit, KHR_materials_pbrSpecularGlossiness
 //   gltf_meshes.cpp     primitives to triangle meshes
 //   gltf_nodes.cpp      the node hierarchy: instances, cameras, punctual lights
 
@@ -60,6 +61,10 @@ class GltfLoader {
                                            const std::string& context);
   PbrMaterial surface(const tinygltf::Material& m, Rgb base, const std::string& context);
   uint32_t material_index(int gltf_material, const std::string& context);
+
+  // older material models (gltf_material_models.cpp)
+  void make_unlit(Material& out);
+  void apply_spec_gloss(const tinygltf::Material& m, PbrMaterial& p, const std::string& context);
 
   // meshes (gltf_meshes.cpp)
   const std::vector<uint32_t>& mesh(int index);

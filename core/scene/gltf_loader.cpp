@@ -26,6 +26,8 @@ const std::set<std::string> kSupportedExtensions = {
     "KHR_draco_mesh_compression",
     "EXT_meshopt_compression",
     "KHR_meshopt_compression",
+    "KHR_materials_unlit",
+    "KHR_materials_pbrSpecularGlossiness",
 };
 
 // Images are kept encoded at load time and decoded only when a material that the scene's

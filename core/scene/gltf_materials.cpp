@@ -27,6 +27,7 @@ Material GltfLoader::convert_material(const tinygltf::Material& m, int index) {
   surface_model.transmission_texture =
       extension_texture(m, "KHR_materials_transmission", "transmissionTexture", context);
   surface_model.thickness_texture = extension_texture(m, "KHR_materials_volume", "thicknessTexture", context);
+  if (m.extensions.count("KHR_materials_pbrSpecularGlossiness")) apply_spec_gloss(m, surface_model, context);
   out.kind = std::move(surface_model);
   out.normal_texture = texture(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions, context);
   out.normal_scale = float(m.normalTexture.scale);
@@ -52,6 +53,7 @@ Material GltfLoader::convert_material(const tinygltf::Material& m, int index) {
     out.emission_texture =
         texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions, context);
   }
+  if (m.extensions.count("KHR_materials_unlit")) make_unlit(out);
   return out;
 }
 
