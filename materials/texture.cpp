@@ -1,8 +1,10 @@
 #include "materials/texture.h"
 
 #include <stb_image.h>
+#include <webp/decode.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "base/error.h"
 
@@ -14,7 +16,26 @@ Image::Image(int width, int height, std::vector<uint8_t> rgba)
     fail("image of {}x{} has {} bytes", width, height, rgba_.size());
 }
 
+namespace {
+
+// A WebP file is a RIFF container of form type "WEBP" (RFC 9649 §2.4).
+bool is_webp(const unsigned char* bytes, size_t size) {
+  return size >= 12 && std::memcmp(bytes, "RIFF", 4) == 0 && std::memcmp(bytes + 8, "WEBP", 4) == 0;
+}
+
+std::shared_ptr<const Image> decode_webp(const unsigned char* bytes, size_t size, const std::string& what) {
+  int w = 0, h = 0;
+  uint8_t* data = WebPDecodeRGBA(bytes, size, &w, &h);
+  if (!data) fail("{}: cannot decode the WebP image", what);
+  std::vector<uint8_t> rgba(data, data + size_t(w) * h * 4);
+  WebPFree(data);
+  return std::make_shared<Image>(w, h, std::move(rgba));
+}
+
+}  // namespace
+
 std::shared_ptr<const Image> Image::decode(const unsigned char* bytes, size_t size, const std::string& what) {
+  if (is_webp(bytes, size)) return decode_webp(bytes, size, what);
   int w = 0, h = 0, channels = 0;
   unsigned char* data = stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4);
   if (!data)

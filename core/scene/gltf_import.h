@@ -55,6 +55,7 @@ class GltfLoader {
   // materials (gltf_materials.cpp)
   Material convert_material(const tinygltf::Material& m, int index);
   std::shared_ptr<const Image> image(int index, const std::string& context);
+  int texture_source(const tinygltf::Texture& t, int index, const std::string& context);  // gltf_texture_source.cpp
   std::optional<Texture> texture(int index, int texcoord, const tinygltf::ExtensionMap& extensions,
                                  const std::string& context);
   std::optional<Texture> extension_texture(const tinygltf::Material& m, const char* extension, const char* field,

@@ -28,6 +28,8 @@ const std::set<std::string> kSupportedExtensions = {
     "KHR_meshopt_compression",
     "KHR_materials_unlit",
     "KHR_materials_pbrSpecularGlossiness",
+    "EXT_texture_webp",
+    "KHR_texture_basisu",
 };
 
 // Images are kept encoded at load time and decoded only when a material that the scene's

@@ -77,9 +77,8 @@ std::optional<Texture> GltfLoader::texture(int index, int texcoord, const tinygl
   if (index < 0) return std::nullopt;
   check_index(index, model_.textures, "texture", context);
   const tinygltf::Texture& t = model_.textures[index];
-  if (t.source < 0) fail("{}: {}: texture {} has no image source", file_, context, index);
   Texture out;
-  out.image = image(t.source, context);
+  out.image = image(texture_source(t, index, context), context);
   out.texcoord = texcoord;
   if (t.sampler >= 0) {
     check_index(t.sampler, model_.samplers, "sampler", context);
