@@ -12,42 +12,31 @@ namespace prism {
 Accel build_accel(const Scene& scene, const AccelOptions& options) {
   std::vector<AccelMesh> meshes;
   for (const Mesh& m : scene.meshes) meshes.push_back({m.positions, m.indices});
-  std::vector<AccelInstance> instances;
-  for (const Instance& inst : scene.instances) instances.push_back({inst.mesh, inst.to_world});
-  return Accel(meshes, instances, options);
+  return Accel(meshes, scene.instances, options);
 }
 
 World::World(const Scene& scene, const AccelOptions& accel)
     : scene_(scene), features_(analyze_features(scene)), accel_(build_accel(scene, accel)) {
-  for (const Instance& inst : scene.instances) {
-    InstanceData d{&scene.meshes[inst.mesh], &inst.to_world, {}, {}, determinant3x3(inst.to_world) < 0};
-    const Transform inv_t = transpose(inverse(inst.to_world));
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) {
-        d.linear[r][c] = float(inst.to_world.m[r][c]);
-        d.normal_matrix[r][c] = float(inv_t.m[r][c]);
-      }
-    instances_.push_back(d);
-  }
   add_lights();
 }
 
 // Transformed exactly as the accel transforms the triangles it flattens into world space, so the
 // shading point lies on the very triangle the ray hit. (A hit on an instanced mesh is found in
 // the mesh's space; its barycentrics carry over, as the transform is affine.)
-std::array<Vec3f, 3> World::world_vertices(const InstanceData& inst, uint32_t prim) const {
-  const Mesh& m = *inst.mesh;
+std::array<Vec3f, 3> World::world_vertices(const Instance& inst, uint32_t prim) const {
+  const Mesh& m = scene_.meshes[inst.mesh];
   std::array<Vec3f, 3> v;
-  for (int k = 0; k < 3; ++k) v[k] = Vec3f(inst.to_world->point(Vec3d(m.positions[m.indices[3 * prim + k]])));
+  for (int k = 0; k < 3; ++k) v[k] = Vec3f(inst.to_world.point(Vec3d(m.positions[m.indices[3 * prim + k]])));
   return v;
 }
 
 void World::add_lights() {
   std::vector<float> powers;
   std::vector<std::optional<float>> material_luminance(scene_.materials.size());  // once per emitting material
-  instance_light_base_.assign(instances_.size(), -1);
-  for (uint32_t i = 0; i < instances_.size(); ++i) {
-    const Mesh& mesh = *instances_[i].mesh;
+  instance_light_base_.assign(scene_.instances.size(), -1);
+  for (uint32_t i = 0; i < scene_.instances.size(); ++i) {
+    const Instance& inst = scene_.instances[i];
+    const Mesh& mesh = scene_.meshes[inst.mesh];
     const Material& material = scene_.materials[mesh.material];
     if (!material.emission) continue;
     const Texture* texture = material.emission_texture ? &*material.emission_texture : nullptr;
@@ -62,9 +51,9 @@ void World::add_lights() {
     }
     instance_light_base_[i] = int(lights_.size());
     for (uint32_t p = 0; p < mesh.indices.size() / 3; ++p) {
-      const auto v = world_vertices(instances_[i], p);
+      const auto v = world_vertices(inst, p);
       const float area = triangle_area(v[0], v[1], v[2]);
-      const Vec3f n = triangle_normal(v[0], v[1], v[2]) * (instances_[i].mirrored ? -1.f : 1.f);
+      const Vec3f n = triangle_normal(v[0], v[1], v[2]) * (inst.to_world.determinant() < 0 ? -1.f : 1.f);
       std::array<Vec2f, 3> uv{};
       if (texture && !mesh.uv[texture->texcoord].empty())
         for (int k = 0; k < 3; ++k) uv[k] = mesh.uv[texture->texcoord][mesh.indices[3 * p + k]];
@@ -118,6 +107,28 @@ void World::add_lights() {
 
 namespace {
 
+// The linear part of an instance's transform, for tangents, and its inverse transpose, for
+// normals (the cofactor matrix over the determinant), computed per hit rather than stored per
+// instance.
+struct InstanceFrame {
+  float linear[3][3], normal_matrix[3][3];
+  bool mirrored;  // negative determinant: winding (and so the front side) flips
+
+  explicit InstanceFrame(const AffineTransform& t) {
+    const auto& a = t.m;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) {
+        linear[r][c] = a[r][c];
+        const int r0 = (r + 1) % 3, r1 = (r + 2) % 3, c0 = (c + 1) % 3, c1 = (c + 2) % 3;
+        normal_matrix[r][c] = a[r0][c0] * a[r1][c1] - a[r0][c1] * a[r1][c0];
+      }
+    const float det = a[0][0] * normal_matrix[0][0] + a[0][1] * normal_matrix[0][1] + a[0][2] * normal_matrix[0][2];
+    mirrored = det < 0;
+    for (auto& row : normal_matrix)
+      for (float& x : row) x /= det;
+  }
+};
+
 Vec3f apply(const float m[3][3], const Vec3f& v) {
   return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
           m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
@@ -141,9 +152,10 @@ T interpolate(const std::vector<T>& values, const Mesh& m, uint32_t prim, const 
 }  // namespace
 
 SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const {
-  const InstanceData& inst = instances_[hit.instance];
-  const Mesh& m = *inst.mesh;
-  const auto v = world_vertices(inst, hit.prim);
+  const Instance& instance = scene_.instances[hit.instance];
+  const Mesh& m = scene_.meshes[instance.mesh];
+  const InstanceFrame inst(instance.to_world);
+  const auto v = world_vertices(instance, hit.prim);
   const float b[3] = {hit.b0, hit.b1, hit.b2};
   SurfaceInteraction si;
   si.p = v[0] * b[0] + v[1] * b[1] + v[2] * b[2];
