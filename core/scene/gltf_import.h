@@ -5,6 +5,7 @@
 //   gltf_material_models.cpp  KHR_materials_unlit, KHR_materials_pbrSpecularGlossiness
 //   gltf_meshes.cpp     primitives to triangle meshes
 //   gltf_nodes.cpp      the node hierarchy: instances, cameras, punctual lights
+//   gltf_instancing.cpp EXT_mesh_gpu_instancing
 
 #include <tiny_gltf.h>
 
@@ -76,6 +77,9 @@ class GltfLoader {
   void traverse_scene();
   void visit(int index, const Transform& parent, std::vector<bool>& on_path);
   void add_camera(const tinygltf::Camera& cam, const Transform& world, const std::string& context);
+  // EXT_mesh_gpu_instancing (gltf_instancing.cpp)
+  void add_gpu_instances(const tinygltf::Node& node, const std::vector<uint32_t>& meshes, const Transform& world,
+                         const std::string& context);
   void add_light(const tinygltf::Light& light, const Transform& world, const std::string& context);
 
   const tinygltf::Model& model_;

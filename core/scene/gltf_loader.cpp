@@ -30,6 +30,7 @@ const std::set<std::string> kSupportedExtensions = {
     "KHR_materials_pbrSpecularGlossiness",
     "EXT_texture_webp",
     "KHR_texture_basisu",
+    "EXT_mesh_gpu_instancing",
 };
 
 // Images are kept encoded at load time and decoded only when a material that the scene's

@@ -58,7 +58,10 @@ void GltfLoader::visit(int index, const Transform& parent, std::vector<bool>& on
   const Transform world = parent * local_transform(node, context);
   if (node.mesh >= 0) {
     check_index(node.mesh, model_.meshes, "mesh", context);
-    for (uint32_t m : mesh(node.mesh)) scene_.instances.push_back({m, world});
+    if (node.extensions.count("EXT_mesh_gpu_instancing"))
+      add_gpu_instances(node, mesh(node.mesh), world, context);
+    else
+      for (uint32_t m : mesh(node.mesh)) scene_.instances.push_back({m, world});
   }
   if (node.camera >= 0) {
     check_index(node.camera, model_.cameras, "camera", context);
