@@ -6,7 +6,7 @@
 // Debian's tinygltf is built without Draco and checks, while parsing, that a primitive's index
 // accessor has a bufferView (a Draco primitive's has none) and that a buffer without a uri is
 // the GLB's binary chunk (a meshopt fallback buffer is neither). So the file's JSON is adjusted
-// before tinygltf sees it (prepare_compressed_gltf), and the data decoded after (decode_*).
+// before tinygltf sees it (prepare_for_tinygltf), and the data decoded after (decode_*).
 
 #include <tiny_gltf.h>
 
@@ -15,11 +15,13 @@
 
 namespace prism {
 
-// The bytes of a .gltf (JSON) or .glb file, with the two adjustments above when the file uses
-// compression: a Draco primitive's "indices" move into its extension object as
-// "prism_indices", and a meshopt fallback buffer without data gets a one-byte placeholder.
-// Other files come back unchanged. `file` names the file in errors.
-std::vector<unsigned char> prepare_compressed_gltf(std::vector<unsigned char> bytes, const std::string& file);
+// The bytes of a .gltf (JSON) or .glb file adjusted so that Debian's tinygltf parses what Prism
+// reads (gltf_prepare.cpp): a Draco primitive's "indices" move into its extension object as
+// "prism_indices"; a meshopt fallback buffer without data gets a one-byte placeholder; an image
+// embedded as a data URI of a type tinygltf does not know (image/webp, image/ktx2) is relabelled
+// application/octet-stream (its mimeType stays). Files that need none of it come back unchanged.
+// `file` names the file in errors.
+std::vector<unsigned char> prepare_for_tinygltf(std::vector<unsigned char> bytes, const std::string& file);
 
 // The JSON text of a .gltf or .glb file's bytes (empty if there is none).
 std::string gltf_json_text(const std::vector<unsigned char>& bytes);

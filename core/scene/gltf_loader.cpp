@@ -103,7 +103,7 @@ Scene load_gltf(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in && !in.eof()) fail("{}: cannot read the file", file.string());
-  bytes = prepare_compressed_gltf(std::move(bytes), file.string());
+  bytes = prepare_for_tinygltf(std::move(bytes), file.string());
   if (bytes.size() > UINT32_MAX) fail("{}: the file is larger than 4 GiB", file.string());
   tinygltf::TinyGLTF reader;
   reader.SetImageLoader(keep_encoded_image, nullptr);

@@ -16,20 +16,6 @@ using namespace prism;
 
 namespace {
 
-std::string base64(const std::vector<unsigned char>& bytes) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t n = (uint32_t(bytes[i]) << 16) | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
-                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
-    out += table[(n >> 18) & 63];
-    out += table[(n >> 12) & 63];
-    out += i + 1 < bytes.size() ? table[(n >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? table[n & 63] : '=';
-  }
-  return out;
-}
-
 // One triangle (u16 indices), one emissive material, a camera and a point light, nested nodes.
 struct TriangleGltf {
   std::vector<uint16_t> indices = {0, 1, 2};
@@ -42,7 +28,8 @@ struct TriangleGltf {
     const float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     std::memcpy(bytes.data(), pos, 36);
     std::memcpy(bytes.data() + 36, indices.data(), 2 * indices.size());
-    const std::string uri = buffer_uri.empty() ? "data:application/octet-stream;base64," + base64(bytes) : buffer_uri;
+    const std::string uri =
+        buffer_uri.empty() ? "data:application/octet-stream;base64," + test::base64(bytes) : buffer_uri;
     return R"({
   "asset": {"version": "2.0"},
   "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_emissive_strength"],

@@ -1,15 +1,17 @@
-#include "scene/gltf_compression.h"
-
 #include <cstring>
 #include <nlohmann/json.hpp>
 
 #include "base/error.h"
+#include "scene/gltf_compression.h"
 
 namespace prism {
 
 namespace {
 
 using Json = nlohmann::json;
+
+// Image types of glTF extensions whose data URIs tinygltf 2.7 does not decode.
+constexpr const char* kOtherImageTypes[] = {"image/webp", "image/ktx2"};
 
 constexpr uint32_t kGlbMagic = 0x46546C67, kJsonChunk = 0x4E4F534A;  // "glTF", "JSON"
 
@@ -36,7 +38,7 @@ bool uses(const Json& doc, const char* extension) {
   return it != doc.end() && it->is_array() && std::find(it->begin(), it->end(), extension) != it->end();
 }
 
-// The two adjustments prepare_compressed_gltf describes, on the parsed JSON.
+// The adjustments prepare_for_tinygltf describes, on the parsed JSON.
 void adjust(Json& doc) {
   if (uses(doc, "KHR_draco_mesh_compression") && doc.contains("meshes") && doc["meshes"].is_array())
     for (Json& mesh : doc["meshes"]) {
@@ -65,6 +67,14 @@ void adjust(Json& doc) {
       buffer["uri"] = "data:application/octet-stream;base64,AA==";
       buffer["byteLength"] = 1;
     }
+  if (doc.contains("images") && doc["images"].is_array())
+    for (Json& image : doc["images"]) {
+      if (!image.is_object() || !image.contains("uri") || !image["uri"].is_string()) continue;
+      const std::string uri = image["uri"];
+      for (const char* type : kOtherImageTypes)
+        if (uri.rfind(std::string("data:") + type + ";base64,", 0) == 0)
+          image["uri"] = "data:application/octet-stream;base64," + uri.substr(uri.find(',') + 1);
+    }
 }
 
 }  // namespace
@@ -76,10 +86,13 @@ std::string gltf_json_text(const std::vector<unsigned char>& bytes) {
   return std::string(bytes.begin() + 20, bytes.begin() + 20 + std::ptrdiff_t(length));
 }
 
-std::vector<unsigned char> prepare_compressed_gltf(std::vector<unsigned char> bytes, const std::string& file) {
+std::vector<unsigned char> prepare_for_tinygltf(std::vector<unsigned char> bytes, const std::string& file) {
   const std::string text = gltf_json_text(bytes);
-  if (text.find("draco_mesh_compression") == std::string::npos && text.find("meshopt_compression") == std::string::npos)
-    return bytes;
+  const bool needed = text.find("draco_mesh_compression") != std::string::npos ||
+                      text.find("meshopt_compression") != std::string::npos ||
+                      std::any_of(std::begin(kOtherImageTypes), std::end(kOtherImageTypes),
+                                  [&](const char* type) { return text.find(type) != std::string::npos; });
+  if (!needed) return bytes;
   Json doc = Json::parse(text, nullptr, false);
   if (doc.is_discarded() || !doc.is_object()) return bytes;  // tinygltf reports the syntax error
   adjust(doc);
