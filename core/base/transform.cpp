@@ -116,7 +116,11 @@ Transform AffineTransform::transform() const {
   return t;
 }
 
-double AffineTransform::determinant() const { return determinant3x3(transform()); }
+double AffineTransform::determinant() const {
+  const auto a = [&](int i, int j) { return double(m[i][j]); };
+  return a(0, 0) * (a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)) - a(0, 1) * (a(1, 0) * a(2, 2) - a(1, 2) * a(2, 0)) +
+         a(0, 2) * (a(1, 0) * a(2, 1) - a(1, 1) * a(2, 0));
+}
 
 // [A t]⁻¹ = [A⁻¹ −A⁻¹t] with A⁻¹ = adj(A) / det(A).
 Transform AffineTransform::inverse() const {

@@ -107,31 +107,20 @@ void World::add_lights() {
 
 namespace {
 
-// The linear part of an instance's transform, for tangents, and its inverse transpose, for
-// normals (the cofactor matrix over the determinant), computed per hit rather than stored per
-// instance.
-struct InstanceFrame {
-  float linear[3][3], normal_matrix[3][3];
-  bool mirrored;  // negative determinant: winding (and so the front side) flips
-
-  explicit InstanceFrame(const AffineTransform& t) {
-    const auto& a = t.m;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) {
-        linear[r][c] = a[r][c];
-        const int r0 = (r + 1) % 3, r1 = (r + 2) % 3, c0 = (c + 1) % 3, c1 = (c + 2) % 3;
-        normal_matrix[r][c] = a[r0][c0] * a[r1][c1] - a[r0][c1] * a[r1][c0];
-      }
-    const float det = a[0][0] * normal_matrix[0][0] + a[0][1] * normal_matrix[0][1] + a[0][2] * normal_matrix[0][2];
-    mirrored = det < 0;
-    for (auto& row : normal_matrix)
-      for (float& x : row) x /= det;
+// A normal under an instance's transform: the cofactor matrix of its linear part, which is the
+// inverse transpose times the determinant (the caller normalises it and turns it to the
+// geometric normal's side, which restores length and sign).
+Vec3f transform_normal(const AffineTransform& t, const Vec3f& n) {
+  const auto& a = t.m;
+  Vec3f r(0, 0, 0);
+  for (int i = 0; i < 3; ++i) {
+    const int i0 = (i + 1) % 3, i1 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j0 = (j + 1) % 3, j1 = (j + 2) % 3;
+      r[i] += (a[i0][j0] * a[i1][j1] - a[i0][j1] * a[i1][j0]) * n[j];
+    }
   }
-};
-
-Vec3f apply(const float m[3][3], const Vec3f& v) {
-  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
-          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+  return r;
 }
 
 // Barycentric interpolation of a per-vertex attribute of triangle prim.
@@ -154,13 +143,13 @@ T interpolate(const std::vector<T>& values, const Mesh& m, uint32_t prim, const 
 SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const {
   const Instance& instance = scene_.instances[hit.instance];
   const Mesh& m = scene_.meshes[instance.mesh];
-  const InstanceFrame inst(instance.to_world);
+  const bool mirrored = instance.to_world.determinant() < 0;  // winding (and so the front side) flips
   const auto v = world_vertices(instance, hit.prim);
   const float b[3] = {hit.b0, hit.b1, hit.b2};
   SurfaceInteraction si;
   si.p = v[0] * b[0] + v[1] * b[1] + v[2] * b[2];
   si.p_error = (abs(v[0] * b[0]) + abs(v[1] * b[1]) + abs(v[2] * b[2])) * gamma(7);
-  si.n = triangle_normal(v[0], v[1], v[2]) * (inst.mirrored ? -1.f : 1.f);
+  si.n = triangle_normal(v[0], v[1], v[2]) * (mirrored ? -1.f : 1.f);
   si.ns = si.n;
   si.wo = -ray.d;
   si.t = hit.t;
@@ -172,7 +161,7 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
   if (!m.colors.empty()) si.at.vertex_color = interpolate(m.colors, m, hit.prim, b);
 
   if (!m.normals.empty()) {
-    const Vec3f ns = apply(inst.normal_matrix, interpolate(m.normals, m, hit.prim, b));
+    const Vec3f ns = transform_normal(instance.to_world, interpolate(m.normals, m, hit.prim, b));
     const float len = length(ns);
     // The shading normal is taken on the geometric normal's side; a zero one falls back to it.
     if (len > 0 && std::isfinite(len)) si.ns = face_forward(ns / len, si.n);
@@ -181,13 +170,13 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
   if (material.normal_texture && !m.tangents.empty()) {
     // Tangent-space normal map (glTF §3.9.3): n = normalize(T x + B y + N z), B = sign · N × T.
     const auto t4 = interpolate(m.tangents, m, hit.prim, b);
-    const Vec3f t_world = apply(inst.linear, Vec3f(t4[0], t4[1], t4[2]));
+    const Vec3f t_world(instance.to_world.vector(Vec3d(t4[0], t4[1], t4[2])));
     const Vec3f t = t_world - si.ns * dot(si.ns, t_world);
     const auto c = material.normal_texture->lookup(si.at.uv[material.normal_texture->texcoord], false);
     const Vec3f local((2 * c[0] - 1) * material.normal_scale, (2 * c[1] - 1) * material.normal_scale, 2 * c[2] - 1);
     if (length_squared(t) > 0 && length_squared(local) > 0) {
       const Vec3f tn = normalize(t);
-      const Vec3f bn = cross(si.ns, tn) * ((t4[3] < 0) != inst.mirrored ? -1.f : 1.f);
+      const Vec3f bn = cross(si.ns, tn) * ((t4[3] < 0) != mirrored ? -1.f : 1.f);
       const Vec3f mapped = tn * local.x + bn * local.y + si.ns * local.z;
       if (length_squared(mapped) > 0 && is_finite(mapped)) si.ns = face_forward(normalize(mapped), si.n);
     }
