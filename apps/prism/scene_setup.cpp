@@ -92,11 +92,13 @@ void add_render_options(CLI::App* cmd, RenderOptions& options) {
   cmd->add_option("--wavelengths", options.wavelengths, "Wavelengths carried per path (1, 4 or 8)")
       ->default_val(kDefaultWavelengths)
       ->check(CLI::IsMember({1, 4, 8}));
-  cmd->add_option("--sampler", options.sampler,
-                  "independent: uniform random numbers; sobol: Owen-scrambled Sobol (best with 2^k spp)")
+  cmd->add_option(
+         "--sampler", options.sampler,
+         "sobol: Owen-scrambled Sobol (0,2)-sequence, every dimension stratified over a pixel's samples at any "
+         "count; independent: uniform random numbers")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, SamplerKind>{{"independent", SamplerKind::independent}, {"sobol", SamplerKind::sobol}}))
-      ->default_str("independent");
+      ->default_str("sobol");
   cmd->add_option_function<std::string>(
          "--light-sampling", [&options](const std::string& v) { options.path.next_event = v == "mis"; },
          "mis: next-event estimation combined with BSDF sampling by MIS; bsdf: BSDF sampling only")

@@ -29,7 +29,7 @@ struct Case {
   bool sharp = false;  // lobes of roughness < 0.2 are too narrow for uniform sampling to resolve
 };
 
-SampledWavelengths<N> wavelengths() { return SampledWavelengths<N>::sample(0.37f); }
+SampledWavelengths<N> wavelengths() { return SampledWavelengths<N>::sample({0.48f, 0.37f}); }
 
 Bsdf<N> bsdf_of(const PbrMaterial& m, float front_ior = 1) {
   auto lambda = wavelengths();
