@@ -2,10 +2,13 @@
 
 #include <cstring>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "base/error.h"
 #include "base/log.h"
+#include "scene/gltf_compression.h"
+#include "scene/gltf_import.h"
 
 namespace prism {
 
@@ -126,6 +129,15 @@ std::string one_line(std::string text) {
   return text;
 }
 
+// The file's first extension in extensionsRequired that Prism lacks, or "".
+std::string unsupported_required_extension(std::string_view json) {
+  const auto doc = nlohmann::json::parse(json, nullptr, false);
+  if (!doc.is_object() || !doc.contains("extensionsRequired") || !doc["extensionsRequired"].is_array()) return {};
+  for (const auto& ext : doc["extensionsRequired"])
+    if (ext.is_string() && !extension_handling(ext.get<std::string>())) return ext.get<std::string>();
+  return {};
+}
+
 // The parser's errors less those glTF 2.0 does not make errors: tinygltf 2.7 calls a skin's
 // inverseBindMatrices required, which the spec makes optional (identity matrices, §5.28).
 std::string spec_errors(const std::string& errors) {
@@ -137,6 +149,11 @@ std::string spec_errors(const std::string& errors) {
 }
 
 }  // namespace
+
+std::string_view gltf_json(const std::vector<unsigned char>& bytes, bool binary) {
+  if (!binary) return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
+  return {reinterpret_cast<const char*>(&bytes[20]), le32(&bytes[12])};
+}
 
 int json_depth(const char* text, size_t size) {
   int depth = 0, deepest = 0;
@@ -175,21 +192,25 @@ std::string read_gltf_file(tinygltf::TinyGLTF& reader, tinygltf::Model& model, c
   std::string error, warn;
   if (!read_bytes(file, bytes, error)) fail("{}: cannot read: {}", name, error);
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-  bool ok;
   size_t bin_length = 0;
   if (binary) {
     size_t json_length = 0;
     bin_length = check_glb(bytes, name, json_length);
     check_depth(reinterpret_cast<const char*>(&bytes[20]), json_length, name);
-    if (bytes.size() > std::numeric_limits<unsigned>::max()) fail("{}: GLB files are limited to 4 GB", name);
-    ok = reader.LoadBinaryFromMemory(&model, &error, &warn, bytes.data(), unsigned(bytes.size()), policy.base);
   } else {
     check_depth(reinterpret_cast<const char*>(bytes.data()), bytes.size(), name);
-    if (bytes.size() > std::numeric_limits<unsigned>::max()) fail("{}: glTF files are limited to 4 GB", name);
-    ok = reader.LoadASCIIFromString(&model, &error, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                    unsigned(bytes.size()), policy.base);
   }
+  bytes = prepare_for_tinygltf(std::move(bytes), binary, name);
+  if (bytes.size() > std::numeric_limits<unsigned>::max()) fail("{}: glTF and GLB files are limited to 4 GB", name);
+  const bool ok =
+      binary ? reader.LoadBinaryFromMemory(&model, &error, &warn, bytes.data(), unsigned(bytes.size()), policy.base)
+             : reader.LoadASCIIFromString(&model, &error, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                          unsigned(bytes.size()), policy.base);
   if (!policy.problem.empty()) fail("{}: {}", name, policy.problem);
+  // A required extension the parser cannot follow (its data elsewhere) is the real cause.
+  if (!ok)
+    if (const std::string ext = unsupported_required_extension(gltf_json(bytes, binary)); !ext.empty())
+      fail("{}: requires extension {}, which Prism does not support", name, ext);
   if (!ok) fail("{}: not a valid glTF file: {}", name, error.empty() ? "unknown error" : one_line(error));
   if (!warn.empty()) log::warn("{}: {}", name, one_line(warn));
   if (binary)

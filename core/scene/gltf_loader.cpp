@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "base/log.h"
+#include "scene/gltf_compression.h"
 #include "scene/gltf_file.h"
 #include "scene/gltf_import.h"
 #include "scene/gltf_variants.h"
@@ -24,6 +25,14 @@ const std::map<std::string, const char*> kSupportedExtensions = {
     {"KHR_texture_transform", "texture coordinate offset, rotation and scale"},
     {"KHR_mesh_quantization", "integer and normalized vertex attributes"},
     {"KHR_materials_variants", "material sets, chosen with --variant NAME"},
+    {"KHR_draco_mesh_compression", "Draco-compressed primitives decoded (libdraco)"},
+    {"EXT_meshopt_compression", "meshoptimizer-compressed buffer views decoded"},
+    {"KHR_meshopt_compression", "meshoptimizer-compressed buffer views decoded"},
+    {"KHR_materials_unlit", "base colour emitted, nothing scattered"},
+    {"KHR_materials_pbrSpecularGlossiness", "converted to metallic-roughness"},
+    {"EXT_texture_webp", "WebP textures (libwebp)"},
+    {"KHR_texture_basisu", "KTX2 not decoded: the texture's PNG/JPEG source is used"},
+    {"EXT_mesh_gpu_instancing", "TRANSLATION, ROTATION, SCALE per instance, into the two-level BVH"},
 };
 
 // Images are kept encoded at load time and decoded only when a material that the scene's
@@ -145,6 +154,10 @@ struct GltfScene::State {
     tinygltf::TinyGLTF reader;
     reader.SetImageLoader(keep_encoded_image, nullptr);
     const std::string errors = read_gltf_file(reader, *model, file, options.allow_external_paths);
+    if (errors.empty()) {  // else the loader names them (after any required extension Prism lacks)
+      decode_meshopt(*model, file.string());
+      decode_draco(*model, file.string());
+    }
     scene.source = file;
     loader = std::make_unique<GltfLoader>(*model, file, options, scene, errors);
   }

@@ -27,6 +27,7 @@ Material GltfLoader::convert_material(const tinygltf::Material& m, int index) {
   surface_model.transmission_texture =
       extension_texture(m, "KHR_materials_transmission", "transmissionTexture", context);
   surface_model.thickness_texture = extension_texture(m, "KHR_materials_volume", "thicknessTexture", context);
+  if (m.extensions.count("KHR_materials_pbrSpecularGlossiness")) apply_spec_gloss(m, surface_model, context);
   out.kind = std::move(surface_model);
   out.normal_texture = texture(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions, context);
   out.normal_scale = float(m.normalTexture.scale);
@@ -53,6 +54,7 @@ Material GltfLoader::convert_material(const tinygltf::Material& m, int index) {
     out.emission_texture =
         texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions, context);
   }
+  if (m.extensions.count("KHR_materials_unlit")) make_unlit(out);
   return out;
 }
 
@@ -76,9 +78,8 @@ std::optional<Texture> GltfLoader::texture(int index, int texcoord, const tinygl
   if (index < 0) return std::nullopt;
   check_index(index, model_.textures, "texture", context);
   const tinygltf::Texture& t = model_.textures[index];
-  if (t.source < 0) fail("{}: {}: texture {} has no image source", file_, context, index);
   Texture out;
-  out.image = image(t.source, context);
+  out.image = image(texture_source(t, index, context), context);
   out.texcoord = texcoord;
   if (t.sampler >= 0) {
     check_index(t.sampler, model_.samplers, "sampler", context);

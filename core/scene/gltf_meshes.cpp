@@ -66,7 +66,7 @@ std::optional<Mesh> GltfLoader::convert_primitive(const tinygltf::Primitive& pri
     // triangle ids, unlike raybench, whose global numbering `prism bench rays` follows.
     const tinygltf::Accessor& acc = model_.accessors[pos->second];
     if (acc.bufferView < 0 && !acc.sparse.isSparse) {
-      warn_once("skipping primitives whose POSITION accessor has no data (compressed meshes are not supported)");
+      warn_once("skipping primitives whose POSITION accessor has no data (no bufferView and no sparse values)");
       return std::nullopt;
     }
   }

@@ -35,6 +35,7 @@ namespace {
 bool float_finite(const Vec3d& v) { return is_finite(Vec3f(v)); }
 
 uint64_t saturating_add(uint64_t a, uint64_t b) { return a > UINT64_MAX - b ? UINT64_MAX : a + b; }
+uint64_t saturating_mul(uint64_t a, uint64_t b) { return b != 0 && a > UINT64_MAX / b ? UINT64_MAX : a * b; }
 
 }  // namespace
 
@@ -74,9 +75,13 @@ void GltfLoader::traverse_scene() {
     const tinygltf::Node& node = model_.nodes[next.node];
     const std::string context = fmt::format("{}: node {} '{}'", file_, next.node, node.name);
     const Transform world = next.parent * pose_[next.node].local();
-    if (node.mesh >= 0 && deforms(node))
+    const bool gpu_instanced = node.extensions.count("EXT_mesh_gpu_instancing") > 0;
+    if (node.mesh >= 0 && deforms(node)) {
+      if (gpu_instanced) warn_once("EXT_mesh_gpu_instancing on a morphed or skinned mesh: drawn once");
       add_deformed(next.node, world);
-    else if (node.mesh >= 0)
+    } else if (node.mesh >= 0 && gpu_instanced) {
+      add_gpu_instances(node, mesh(node.mesh), world, context);
+    } else if (node.mesh >= 0)
       for (uint32_t m : mesh(node.mesh)) {
         if (!placed.insert({m, world.m}).second) {
           ++coincident;  // the same mesh in the same place again: invisible, only slower
@@ -131,7 +136,7 @@ uint64_t GltfLoader::count_instances(const std::vector<int>& roots) const {
       uint64_t n = 1;
       if (node.mesh >= 0) {
         check_index(node.mesh, model_.meshes, "mesh", fmt::format("{}: node {} '{}'", file_, index, node.name));
-        n += model_.meshes[node.mesh].primitives.size();
+        n = saturating_add(n, saturating_mul(model_.meshes[node.mesh].primitives.size(), gpu_instance_count(node)));
       }
       for (int child : node.children) n = saturating_add(n, count[child]);
       count[index] = n;
