@@ -1,16 +1,23 @@
 # Prism. On a fresh Debian 12 machine:
 #   make render   installs what is missing, builds (Release), renders the default scene
 #   make test     the same set-up, then the whole test suite
+#   make test-sanitize   the test suite built with AddressSanitizer + UBSan (in build-asan/)
+#   make fuzz     libFuzzer targets (clang, in build-fuzz/), each run FUZZ_SECONDS on a generated corpus
 #   make bench-rays   Prism's BVH against Embree, ray for ray (needs ../shared/tools/raybench built)
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 SPP ?= 64
 SIZE ?= 512
 
-PACKAGES := cmake make g++ pkg-config libopenexr-dev libopencolorio-dev libtinygltf-dev nlohmann-json3-dev \
-            libstb-dev catch2 libtbb-dev libcli11-dev libfmt-dev
+PACKAGES := cmake make g++ pkg-config python3 libopenexr-dev libopencolorio-dev libtinygltf-dev nlohmann-json3-dev \
+            libstb-dev catch2 libtbb-dev libcli11-dev libfmt-dev libdraco-dev libmeshoptimizer-dev libwebp-dev
+FUZZ_PACKAGES := clang-14 libclang-rt-14-dev
+ASAN_DIR ?= build-asan
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 60
+SANITIZE := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 
-.PHONY: all deps build render test test-slurm bench-rays clean
+.PHONY: all deps build render test test-slurm test-sanitize fuzz bench-rays clean
 
 all: build
 
@@ -32,9 +39,26 @@ test: build
 test-slurm: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -L slurm
 
+# The whole suite under AddressSanitizer + UndefinedBehaviorSanitizer: any finding fails a test.
+test-sanitize: deps
+	cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS=$(SANITIZE)" \
+	  "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined"
+	cmake --build $(ASAN_DIR) -j $(JOBS)
+	cd $(ASAN_DIR) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  ctest --output-on-failure -j $(JOBS)
+
+# Each libFuzzer target for FUZZ_SECONDS on a corpus seeded by fuzz/make_corpus.py (see
+# tools/run_fuzzers.sh); a crash, leak, timeout or sanitizer report fails.
+fuzz: deps
+	@tools/install-deps.sh $(FUZZ_PACKAGES)
+	cmake -S . -B $(FUZZ_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
+	  -DPRISM_FUZZ=ON -DPRISM_BUILD_TESTS=OFF
+	cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_gltf fuzz_env_map fuzz_image
+	tools/run_fuzzers.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
+
 # Prism's BVH against Embree on raybench's ray sets (needs raybench built; see tools/bench_rays.sh).
 bench-rays: build
 	tools/bench_rays.sh
 
 clean:
-	rm -rf $(BUILD_DIR) out
+	rm -rf $(BUILD_DIR) $(ASAN_DIR) $(FUZZ_DIR) out

@@ -19,7 +19,7 @@ bool hittable(const Triangle& v) {
 // World-space box of a box under an affine transform, rounded outwards, and padded by a little
 // more than the rounding of a ray transformed into the instance's space, so that the world tree
 // never culls an instance that the ray, in object space, would hit.
-Bounds3f transform_bounds(const Transform& m, const Bounds3f& b) {
+Bounds3f transform_bounds(const AffineTransform& m, const Bounds3f& b) {
   Vec3d lo(kInfinity, kInfinity, kInfinity), hi(-kInfinity, -kInfinity, -kInfinity);
   for (int corner = 0; corner < 8; ++corner) {
     const Vec3d p =
@@ -40,13 +40,12 @@ Bounds3f transform_bounds(const Transform& m, const Bounds3f& b) {
 }  // namespace
 
 Accel::TriangleTree::TriangleTree(const std::vector<Triangle>& triangles, std::span<const uint32_t> ids,
-                                  std::span<const Bounds3f> solo_bounds) {
-  std::vector<Bounds3f> bounds(triangles.size());
+                                  std::vector<Bounds3f> bounds) {
+  if (bounds.empty()) bounds.resize(triangles.size());
   tbb::parallel_for(size_t(0), triangles.size(), [&](size_t i) {
     if (!hittable(triangles[i])) return;
     for (const Vec3f& v : triangles[i]) bounds[i].extend(v);
   });
-  bounds.insert(bounds.end(), solo_bounds.begin(), solo_bounds.end());
   std::vector<uint32_t> slots;
   bvh = Bvh::build(bounds, {.block_size = TriangleBlock::kLanes, .first_solo = uint32_t(triangles.size())}, slots);
   blocks.resize(slots.size() / TriangleBlock::kLanes);
@@ -59,7 +58,7 @@ Accel::TriangleTree::TriangleTree(const std::vector<Triangle>& triangles, std::s
 }
 
 Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> instances, const AccelOptions& options)
-    : brute_force_(options.brute_force) {
+    : instances_(instances), brute_force_(options.brute_force) {
   std::vector<uint32_t> users(meshes.size(), 0);
   for (const AccelInstance& inst : instances) ++users[inst.mesh];
   const auto shared = [&](const AccelInstance& inst) { return users[inst.mesh] > 1 && !options.flatten_instances; };
@@ -80,7 +79,7 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
   tbb::parallel_for(size_t(0), instances.size(), [&](size_t i) {
     if (shared(instances[i])) return;
     const AccelMesh& mesh = meshes[instances[i].mesh];
-    const Transform& m = instances[i].to_world;
+    const AffineTransform& m = instances[i].to_world;
     for (uint32_t p = 0; p < triangles_of(instances[i].mesh); ++p) {
       for (int k = 0; k < 3; ++k)
         world_triangles[world_first[i] + p][k] = Vec3f(m.point(Vec3d(mesh.positions[mesh.indices[3 * p + k]])));
@@ -88,27 +87,27 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
     }
   });
 
-  // One tree per shared mesh, in object space; each instance of it a solo leaf of the world tree.
-  std::vector<int> tree_of(meshes.size(), -1);
-  std::vector<Bounds3f> placement_bounds;
-  for (uint32_t i = 0; i < instances.size(); ++i) {
-    const uint32_t mesh = instances[i].mesh;
-    if (!shared(instances[i])) continue;
-    if (tree_of[mesh] < 0) {
-      tree_of[mesh] = int(mesh_trees_.size());
-      std::vector<Triangle> triangles(triangles_of(mesh));
-      std::vector<uint32_t> ids(triangles.size());
-      for (uint32_t p = 0; p < triangles.size(); ++p) {
-        for (int k = 0; k < 3; ++k) triangles[p][k] = meshes[mesh].positions[meshes[mesh].indices[3 * p + k]];
-        ids[p] = p;
-      }
-      mesh_trees_.emplace_back(triangles, ids);
+  // One tree per shared mesh, in object space; each instance of it a solo leaf of the world tree,
+  // numbered as the instance.
+  tree_of_mesh_.assign(meshes.size(), -1);
+  std::vector<Bounds3f> bounds(world_count + instances.size());  // the world tree's triangles, then solos
+  for (uint32_t mesh = 0; mesh < meshes.size(); ++mesh) {
+    if (users[mesh] < 2 || options.flatten_instances) continue;
+    tree_of_mesh_[mesh] = int(mesh_trees_.size());
+    std::vector<Triangle> triangles(triangles_of(mesh));
+    std::vector<uint32_t> ids(triangles.size());
+    for (uint32_t p = 0; p < triangles.size(); ++p) {
+      for (int k = 0; k < 3; ++k) triangles[p][k] = meshes[mesh].positions[meshes[mesh].indices[3 * p + k]];
+      ids[p] = p;
     }
-    const Bvh& tree = mesh_trees_[tree_of[mesh]].bvh;
-    placements_.push_back({i, uint32_t(tree_of[mesh]), inverse(instances[i].to_world)});
-    placement_bounds.push_back(tree.empty() ? Bounds3f{} : transform_bounds(instances[i].to_world, tree.bounds()));
+    mesh_trees_.emplace_back(triangles, ids);
   }
-  world_ = TriangleTree(world_triangles, world_ids, placement_bounds);
+  tbb::parallel_for(size_t(0), instances.size(), [&](size_t i) {
+    if (!shared(instances[i])) return;
+    const Bvh& tree = mesh_trees_[tree_of_mesh_[instances[i].mesh]].bvh;
+    if (!tree.empty()) bounds[world_count + i] = transform_bounds(instances[i].to_world, tree.bounds());
+  });
+  world_ = TriangleTree(world_triangles, world_ids, std::move(bounds));
 }
 
 struct Accel::Closest {
@@ -147,14 +146,16 @@ bool Accel::trace(const Ray& ray, Closest& closest) const {
   const auto leaf = [&](uint32_t first, uint32_t count) {
     return test_blocks<AnyHit>(world_, first, count, kWorld, world_ray, closest);
   };
-  const auto enter = [&](uint32_t placement) {
-    const Placement& p = placements_[placement];
-    const TriangleTree& tree = mesh_trees_[p.tree];
+  const auto enter = [&](uint32_t instance) {
+    const Instance& inst = instances_[instance];
+    const TriangleTree& tree = mesh_trees_[tree_of_mesh_[inst.mesh]];
+    const Transform to_object = inst.to_world.inverse();
+    if (to_object.m[3][3] == 0) return false;  // singular: a flat instance nothing hits
     // In the mesh's space the direction is not unit length, so t stays the world-space distance.
-    const Ray object_ray{Vec3f(p.to_object.point(Vec3d(ray.o))), Vec3f(p.to_object.vector(Vec3d(ray.d))), ray.tmax};
+    const Ray object_ray{Vec3f(to_object.point(Vec3d(ray.o))), Vec3f(to_object.vector(Vec3d(ray.d))), ray.tmax};
     const WatertightRay wr(object_ray);
     const auto mesh_leaf = [&](uint32_t first, uint32_t count) {
-      return test_blocks<AnyHit>(tree, first, count, p.instance, wr, closest);
+      return test_blocks<AnyHit>(tree, first, count, instance, wr, closest);
     };
     if (brute_force_) return mesh_leaf(0, uint32_t(tree.blocks.size()));
     return tree.bvh.traverse<AnyHit>(object_ray, closest.t, tree.blocks.data(), mesh_leaf,
@@ -162,10 +163,11 @@ bool Accel::trace(const Ray& ray, Closest& closest) const {
   };
   if (brute_force_) {
     bool found = leaf(0, uint32_t(world_.blocks.size()));
-    for (uint32_t p = 0; p < placements_.size(); ++p) {
+    for (uint32_t i = 0; i < instances_.size(); ++i) {
+      if (tree_of_mesh_[instances_[i].mesh] < 0) continue;
       if constexpr (AnyHit)
         if (found) return true;
-      found |= enter(p);
+      found |= enter(i);
     }
     return found;
   }
@@ -189,7 +191,7 @@ bool Accel::occluded(const Ray& ray) const {
 }
 
 size_t Accel::memory_bytes() const {
-  size_t bytes = world_.memory_bytes() + placements_.size() * sizeof(Placement) + first_prim_.size() * sizeof(uint32_t);
+  size_t bytes = world_.memory_bytes() + first_prim_.size() * sizeof(uint32_t) + tree_of_mesh_.size() * sizeof(int);
   for (const TriangleTree& t : mesh_trees_) bytes += t.memory_bytes();
   return bytes;
 }

@@ -5,7 +5,8 @@
 // Two levels where they pay: the instances of a mesh that no other instance uses are copied
 // into one world-space BVH (the fastest to trace); a mesh shared by several instances gets one
 // BVH in its own space, and each of its instances enters the world BVH as a leaf of its own,
-// which the ray crosses into the mesh's space through the instance's transform. Queries are
+// which the ray crosses into the mesh's space through the instance's transform (the instances'
+// own array, read while tracing: no per-instance copy, so millions of instances stay small). Queries are
 // exact functions of the geometry: the closest hit is the one with the smallest t, and among
 // equally close ones the smallest global_prim, whatever the trees' shapes or visiting order.
 
@@ -15,7 +16,7 @@
 
 #include "accel/bvh.h"
 #include "accel/triangle.h"
-#include "base/transform.h"
+#include "base/instance.h"
 
 namespace prism {
 
@@ -24,10 +25,7 @@ struct AccelMesh {
   std::span<const uint32_t> indices;  // three per triangle
 };
 
-struct AccelInstance {
-  uint32_t mesh;
-  Transform to_world;
-};
+using AccelInstance = Instance;
 
 struct AccelOptions {
   bool flatten_instances = false;  // copy shared meshes into the world-space BVH too
@@ -46,6 +44,7 @@ struct AccelHit {
 class Accel {
  public:
   Accel() = default;
+  // `instances` must outlive the Accel: tracing reads the transforms of shared meshes' instances.
   Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> instances, const AccelOptions& options = {});
 
   bool intersect(const Ray& ray, AccelHit& hit) const;  // closest hit with 0 < t < ray.tmax
@@ -61,20 +60,15 @@ class Accel {
   static constexpr uint32_t kWorld = 0xFFFFFFFF;  // "instance" of triangles in the world tree
   // A BVH whose leaves are blocks of triangles; `id`s are global triangle numbers in the world
   // tree and triangle numbers within the mesh in a mesh's tree. The world tree's solo leaves
-  // are its instances of shared meshes.
+  // are its instances of shared meshes, numbered as the instances.
   struct TriangleTree {
     Bvh bvh;
     std::vector<TriangleBlock, HugePageAllocator<TriangleBlock>> blocks;
     TriangleTree() = default;
+    // `bounds`: one box per triangle (filled here), then the solo leaves' boxes (the caller's).
     TriangleTree(const std::vector<std::array<Vec3f, 3>>& triangles, std::span<const uint32_t> ids,
-                 std::span<const Bounds3f> solo_bounds = {});
+                 std::vector<Bounds3f> bounds = {});
     size_t memory_bytes() const { return bvh.memory_bytes() + blocks.size() * sizeof(TriangleBlock); }
-  };
-  // An instance of a shared mesh.
-  struct Placement {
-    uint32_t instance;
-    uint32_t tree;  // into mesh_trees_
-    Transform to_object;
   };
   struct Closest;
   template <bool AnyHit>
@@ -85,7 +79,8 @@ class Accel {
 
   TriangleTree world_;
   std::vector<TriangleTree> mesh_trees_;
-  std::vector<Placement> placements_;  // the world tree's solo leaves
+  std::span<const Instance> instances_;
+  std::vector<int> tree_of_mesh_;  // into mesh_trees_, or −1 for a mesh flattened into world_
   std::vector<uint32_t> first_prim_;
   size_t triangle_count_ = 0;
   bool brute_force_ = false;

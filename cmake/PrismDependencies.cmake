@@ -30,6 +30,28 @@ find_package(fmt CONFIG QUIET)
 prism_require(fmt_FOUND libfmt-dev)
 pkg_check_modules(STB QUIET IMPORTED_TARGET stb)
 prism_require(STB_FOUND libstb-dev)
+find_package(draco CONFIG QUIET)  # KHR_draco_mesh_compression
+prism_require(draco_FOUND libdraco-dev)
+# Debian's libdraco also holds its own copies of tinygltf and stb_image (archive member
+# tiny_gltf_utils.cc.o, exported by libdraco.so too): linked, they would stand in for the system's
+# (another version, another layout) and crash. Prism links a copy of the static archive without
+# that member: prism::draco, the decoder and encoder only.
+get_target_property(PRISM_DRACO_ARCHIVE draco::draco_static IMPORTED_LOCATION_NONE)
+set(PRISM_DRACO ${CMAKE_BINARY_DIR}/libprism_draco.a)
+if(NOT EXISTS ${PRISM_DRACO} OR ${PRISM_DRACO_ARCHIVE} IS_NEWER_THAN ${PRISM_DRACO})
+  file(COPY_FILE ${PRISM_DRACO_ARCHIVE} ${PRISM_DRACO})
+  execute_process(COMMAND ${CMAKE_AR} d ${PRISM_DRACO} tiny_gltf_utils.cc.o RESULT_VARIABLE PRISM_DRACO_AR)
+  if(NOT PRISM_DRACO_AR EQUAL 0)
+    message(FATAL_ERROR "Cannot remove tinygltf from a copy of ${PRISM_DRACO_ARCHIVE}")
+  endif()
+endif()
+add_library(prism::draco STATIC IMPORTED GLOBAL)
+set_target_properties(prism::draco PROPERTIES IMPORTED_LOCATION ${PRISM_DRACO} INTERFACE_INCLUDE_DIRECTORIES
+                                                                                 /usr/include)
+find_package(meshoptimizer CONFIG QUIET)  # EXT_/KHR_meshopt_compression
+prism_require(meshoptimizer_FOUND libmeshoptimizer-dev)
+pkg_check_modules(WEBP QUIET IMPORTED_TARGET libwebp)  # EXT_texture_webp
+prism_require(WEBP_FOUND libwebp-dev)
 if(PRISM_BUILD_TESTS)
   find_package(Catch2 2 CONFIG QUIET)
   prism_require(Catch2_FOUND catch2)

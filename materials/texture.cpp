@@ -1,8 +1,12 @@
 #include "materials/texture.h"
 
 #include <stb_image.h>
+#include <webp/decode.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 
 #include "base/error.h"
 
@@ -14,8 +18,41 @@ Image::Image(int width, int height, std::vector<uint8_t> rgba)
     fail("image of {}x{} has {} bytes", width, height, rgba_.size());
 }
 
+namespace {
+
+// The largest image accepted, checked before the decoder allocates for it (2^28 texels = 1 GB as RGBA).
+constexpr uint64_t kMaxTexels = uint64_t(1) << 28;
+
+// A WebP file is a RIFF container of form type "WEBP" (RFC 9649 §2.4).
+bool is_webp(const unsigned char* bytes, size_t size) {
+  return size >= 12 && std::memcmp(bytes, "RIFF", 4) == 0 && std::memcmp(bytes + 8, "WEBP", 4) == 0;
+}
+
+std::shared_ptr<const Image> decode_webp(const unsigned char* bytes, size_t size, const std::string& what) {
+  int w = 0, h = 0;
+  if (!WebPGetInfo(bytes, size, &w, &h)) fail("{}: cannot decode the WebP image", what);
+  if (uint64_t(w) * uint64_t(h) > kMaxTexels)
+    fail("{}: a {}x{} image is larger than the 2^28 texels Prism accepts", what, w, h);
+  uint8_t* data = WebPDecodeRGBA(bytes, size, &w, &h);
+  if (!data) fail("{}: cannot decode the WebP image", what);
+  std::vector<uint8_t> rgba(data, data + size_t(w) * h * 4);
+  WebPFree(data);
+  return std::make_shared<Image>(w, h, std::move(rgba));
+}
+
+}  // namespace
+
 std::shared_ptr<const Image> Image::decode(const unsigned char* bytes, size_t size, const std::string& what) {
+  if (is_webp(bytes, size)) return decode_webp(bytes, size, what);
   int w = 0, h = 0, channels = 0;
+  if (size > size_t(std::numeric_limits<int>::max())) fail("{}: encoded image of {} bytes is too large", what, size);
+  // glTF images are PNG or JPEG (glTF 2.0 §3.8.1), or WebP above: stb_image's other decoders (PNM, BMP, TGA,
+  // PSD...) are never reached, and with them their bugs (fuzz_image crashed Debian's PNM reader).
+  const bool png = size >= 8 && std::memcmp(bytes, "\x89PNG\r\n\x1a\n", 8) == 0;
+  const bool jpeg = size >= 3 && std::memcmp(bytes, "\xff\xd8\xff", 3) == 0;
+  if (!png && !jpeg) fail("{}: not a WebP, PNG or JPEG image", what);
+  if (stbi_info_from_memory(bytes, int(size), &w, &h, &channels) && uint64_t(w) * uint64_t(h) > kMaxTexels)
+    fail("{}: a {}x{} image is larger than the 2^28 texels Prism accepts", what, w, h);
   unsigned char* data = stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4);
   if (!data)
     fail("{}: cannot decode the image ({})", what, stbi_failure_reason() ? stbi_failure_reason() : "unknown format");

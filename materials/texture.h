@@ -1,6 +1,6 @@
 #pragma once
 // Image textures as glTF defines them (glTF 2.0 §3.8): 8-bit RGBA texels decoded by stb_image
-// from the file's PNG or JPEG bytes, a sampler (wrap modes, nearest or bilinear filtering), a
+// from the file's PNG or JPEG bytes (libwebp: WebP), a sampler (wrap modes, nearest or bilinear filtering), a
 // texture-coordinate set and KHR_texture_transform. (0, 0) is the image's top-left corner.
 // Colour textures (base colour, emissive) are sRGB-encoded and decoded to linear on lookup.
 
@@ -16,7 +16,7 @@ namespace prism {
 class Image {
  public:
   Image(int width, int height, std::vector<uint8_t> rgba);
-  // Decodes PNG or JPEG bytes; throws prism::Error naming `what` if they are not an image.
+  // Decodes PNG, JPEG or WebP bytes; throws prism::Error naming `what` if they are not an image.
   static std::shared_ptr<const Image> decode(const unsigned char* bytes, size_t size, const std::string& what);
 
   int width() const { return width_; }

@@ -79,8 +79,8 @@ std::string ColorPipeline::canonical_name(std::string_view space) const {
   const auto cs = impl_->config->getColorSpace(std::string(space).c_str());
   if (!cs) {
     std::string list;
-    for (const auto& n : color_spaces()) list += "\n  " + n;
-    fail("unknown colour space '{}'; {} offers:{}", space, impl_->file.string(), list);
+    for (const auto& n : color_spaces()) list += (list.empty() ? "'" : ", '") + n + "'";
+    fail("unknown colour space '{}'; {} offers {}", space, impl_->file.string(), list);
   }
   if (cs->isData()) fail("colour space '{}' holds non-colour data and cannot be an image's colour space", space);
   return cs->getName();

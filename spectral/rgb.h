@@ -16,6 +16,11 @@ struct Rgb {
   constexpr bool operator==(const Rgb&) const = default;
 };
 
+// The largest emitted radiance (or intensity) per channel Prism accepts: brighter emitters in a
+// file are clamped to it with a warning, brighter command-line values refused. It leaves a float
+// path throughput, summed over many samples, a margin of 10^26 before overflow.
+inline constexpr float kMaxEmission = 1e12f;
+
 // Luminance of linear Rec.709 RGB (ITU-R BT.709 weights).
 constexpr float luminance(Rgb c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 

@@ -50,6 +50,9 @@ std::array<float, 3> RgbToSpectrumTable::coefficients(int l, int zi, int yi, int
 }
 
 RgbSigmoidPolynomial RgbToSpectrumTable::operator()(Rgb rgb) const {
+  // The table covers [0, 1]^3: anything else (NaN included, read as 0) is clamped into it, so
+  // no input can index outside the table.
+  for (int c = 0; c < 3; ++c) rgb[c] = std::isnan(rgb[c]) ? 0.f : std::clamp(rgb[c], 0.f, 1.f);
   // Grey: s(c2) = v exactly for c2 = (v − 1/2) / sqrt(v (1 − v)) (v = 1 gives +∞ → s = 1).
   if (rgb.r == rgb.g && rgb.g == rgb.b) {
     const float v = rgb.r;

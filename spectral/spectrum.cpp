@@ -40,7 +40,8 @@ RgbAlbedoSpectrum::RgbAlbedoSpectrum(Rgb rgb) {
 }
 
 RgbUnboundedSpectrum::RgbUnboundedSpectrum(Rgb rgb) {
-  for (int c = 0; c < 3; ++c) rgb[c] = std::max(rgb[c], 0.f);
+  // Defined for any input: NaN reads as 0, and values are clamped to [0, 1e30] so that 2 m stays finite.
+  for (int c = 0; c < 3; ++c) rgb[c] = std::isnan(rgb[c]) ? 0.f : std::clamp(rgb[c], 0.f, 1e30f);
   const float m = rgb.max();
   scale = 2 * m;
   rsp = RgbToSpectrumTable::srgb()(scale > 0 ? rgb / scale : Rgb{0, 0, 0});

@@ -101,6 +101,7 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--hits", args->hits, "Write the last pass's results in raybench's HITS.bin format");
   cmd->callback([args] { run(*args); });
   add_bench_features_command(bench);
+  add_bench_instances_command(bench);
 }
 
 }  // namespace prism

@@ -225,7 +225,7 @@ void add_converge_command(CLI::App& app) {
       ->default_val(16)
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")->default_val(0);
-  cmd->add_option("--seed", args->seed, "Random seed")->default_val(0);
+  cmd->add_option("--seed", args->seed, "Random seed")->default_val(0)->check(seed_value());
   cmd->callback([args] { run(*args); });
 }
 

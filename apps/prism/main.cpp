@@ -2,6 +2,7 @@
 // usage errors exit with 2.
 
 #include <cstdio>
+#include <new>
 
 #include "apps/prism/commands.h"
 #include "base/error.h"
@@ -24,6 +25,10 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   } catch (const prism::Error& e) {
     std::fprintf(stderr, "prism: error: %s\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr,
+                 "prism: error: out of memory (a smaller image, or --max-memory to refuse such work up front)\n");
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "prism: internal error: %s\n", e.what());

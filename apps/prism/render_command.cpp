@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -115,6 +116,23 @@ SampleCounts sample_counts(const Film& film) {
   }
   c.mean /= double(film.pixel_count());
   return c;
+}
+
+// An output path must be a regular file or not exist yet, in a folder (made if missing): never a
+// device, a folder or anything else the final rename would replace. Checked before rendering.
+void check_output(const std::string& path, const char* option) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::symlink_status(path, ec);
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    fail("{}: {} names something other than a regular file; refusing to replace it", path, option);
+  for (fs::path dir = fs::path(path).parent_path(); !dir.empty(); dir = dir.parent_path()) {
+    if (fs::exists(dir, ec)) {
+      if (!fs::is_directory(dir, ec)) fail("{}: {} lies under {}, which is not a folder", path, option, dir.string());
+      break;
+    }
+    if (dir == dir.parent_path()) break;
+  }
 }
 
 // Renders the prepared scene to `output` (and `preview`); `time` is the animation time posed.
@@ -240,11 +258,17 @@ void run(const RenderArgs& args) {
   interrupt::install();
   ColorPipeline::standard().canonical_name(args.colorspace);  // a bad name fails before any work
   if (args.frames.empty()) {
+    check_output(args.output, "-o");
+    if (!args.preview.empty()) check_output(args.preview, "--preview");
     render_image(args, prepare_scene(args.scene), args.output, args.preview, args.scene.gltf.time);
     return;
   }
   const FrameRange range = parse_frames(args.frames);
   if (!(args.fps > 0 && std::isfinite(args.fps))) fail("--fps {}: must be a positive number", args.fps);
+  for (int64_t frame = range.first; frame <= range.last; ++frame) {
+    check_output(frame_path(args.output, int(frame)), "-o");
+    if (!args.preview.empty()) check_output(frame_path(args.preview, int(frame)), "--preview");
+  }
   SceneArgs scene_args = args.scene;
   scene_args.gltf.time = range.first / args.fps;
   PreparedScene prepared = prepare_scene(scene_args, true);

@@ -1,6 +1,11 @@
 #include "apps/prism/scene_setup.h"
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
+#include <cstdlib>
+#include <limits>
 #include <sstream>
 
 #include "base/clock.h"
@@ -28,11 +33,17 @@ Rgb parse_rgb(const std::string& text, const char* what) {
     } catch (const std::exception&) {
       fail("{} '{}': '{}' is not a number", what, text, cell);
     }
-    if (!std::isfinite(rgb[i]) || rgb[i] < 0) fail("{} '{}': values must be finite and non-negative", what, text);
+    if (!std::isfinite(rgb[i]) || rgb[i] < 0 || rgb[i] > kMaxEmission)
+      fail("{} '{}': values must be finite, non-negative and at most {:g}", what, text, kMaxEmission);
     ++i;
   }
   if (i != 3) fail("{} '{}': expected three numbers R,G,B", what, text);
   return rgb;
+}
+
+uint64_t max_memory_bytes(const SceneArgs& args) {
+  if (args.max_memory_gb > 0) return uint64_t(std::min(args.max_memory_gb * 1e9, 1.8e19));
+  return uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
 }
 
 CameraDesc choose_camera(const Scene& scene, const SceneArgs& args) {
@@ -50,6 +61,25 @@ CameraDesc choose_camera(const Scene& scene, const SceneArgs& args) {
 
 }  // namespace
 
+const CLI::Validator& positive_count() {
+  static const CLI::Validator v = CLI::Range(1, std::numeric_limits<int>::max());
+  return v;
+}
+
+const CLI::Validator& seed_value() {
+  static const CLI::Validator v(
+      [](std::string& text) -> std::string {
+        errno = 0;
+        char* end = nullptr;
+        const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        std::strtoull(text.c_str(), &end, 10);
+        if (!digits || errno == ERANGE || *end) return "a seed is an integer from 0 to 18446744073709551615";
+        return {};
+      },
+      "UINT64");
+  return v;
+}
+
 const char* integrator_name(IntegratorKind kind) { return kind == IntegratorKind::path ? "path" : "whitted"; }
 const char* sampler_name(SamplerKind kind) { return kind == SamplerKind::independent ? "independent" : "sobol"; }
 
@@ -57,9 +87,9 @@ void add_scene_options(CLI::App* cmd, SceneArgs& args) {
   cmd->add_option("scene", args.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
   cmd->add_option("--width", args.width,
                   "Image width in pixels (default: 640, or from --height and the camera's aspect)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_count());
   cmd->add_option("--height", args.height, "Image height in pixels (default: from the width and the camera's aspect)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_count());
   cmd->add_option("--camera", args.camera, "Use the N-th camera in scene order (0-based; default: the first)")
       ->check(CLI::NonNegativeNumber);
   add_gltf_options(cmd, args.gltf);
@@ -74,6 +104,9 @@ void add_scene_options(CLI::App* cmd, SceneArgs& args) {
   cmd->add_option("--env-scale", args.env_scale, "Multiply the environment image by S")
       ->needs(env_map)
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-memory", args.max_memory_gb,
+                  "Refuse scenes and images estimated to need more than GB gigabytes (default: physical memory)")
+      ->check(CLI::PositiveNumber);
 }
 
 void add_gltf_options(CLI::App* cmd, GltfOptions& options) {
@@ -84,11 +117,15 @@ void add_gltf_options(CLI::App* cmd, GltfOptions& options) {
   cmd->add_option("--time", options.time, "Pose the animations at SECONDS (default: the file's own pose)");
   cmd->add_option("--animation", options.animation,
                   "Play only this animation, by name or 0-based index (default: all)");
+  cmd->add_flag("--allow-external-paths", options.allow_external_paths,
+                "Let the scene's URIs name files outside its folder (off: such files are refused)");
 }
 
 void add_render_options(CLI::App* cmd, RenderOptions& options) {
-  cmd->add_option("--spp", options.spp, "Samples per pixel")->default_val(16)->check(CLI::PositiveNumber);
-  cmd->add_option("--seed", options.seed, "Random seed: the same seed gives the same image")->default_val(0);
+  cmd->add_option("--spp", options.spp, "Samples per pixel")->default_val(16)->check(positive_count());
+  cmd->add_option("--seed", options.seed, "Random seed: the same seed gives the same image")
+      ->default_val(0)
+      ->check(seed_value());
   cmd->add_option("--threads", options.threads, "Worker threads (0: all cores)")
       ->default_val(0)
       ->check(CLI::NonNegativeNumber);
@@ -124,6 +161,10 @@ void build_world(PreparedScene& p, const SceneArgs& args) {
   if (!p.camera || !scene.cameras.empty()) {  // a framing camera stays as the first pose framed it
     const CameraDesc camera_desc = choose_camera(scene, args);
     const Vec2i size = resolve_resolution(args.width, args.height, camera_desc);
+    const uint64_t max_memory = max_memory_bytes(args);
+    if (uint64_t(size.x) * uint64_t(size.y) > max_memory / kBytesPerPixel)
+      fail("{}: a {}x{} image needs about {:.3g} GB, more than --max-memory {:.3g} GB", args.scene, size.x, size.y,
+           double(size.x) * size.y * kBytesPerPixel / 1e9, max_memory / 1e9);
     p.camera = std::make_unique<Camera>(camera_desc, size.x, size.y);
   }
 
@@ -155,7 +196,9 @@ PreparedScene prepare_scene(const SceneArgs& args, bool keep_file) {
 
   PreparedScene p;
   auto t0 = std::chrono::steady_clock::now();
-  p.gltf = std::make_unique<GltfScene>(args.scene, args.gltf);
+  GltfOptions gltf = args.gltf;
+  gltf.max_instances = max_memory_bytes(args) / kBytesPerInstance;
+  p.gltf = std::make_unique<GltfScene>(args.scene, gltf);
   Scene& scene = p.gltf->scene();
   if (env) scene.environment = RgbIlluminantSpectrum(*env);
   scene.environment_map = std::move(env_map);

@@ -16,13 +16,23 @@ struct SceneArgs {
   float env_rotate = 0, env_scale = 1;
   int width = 0, height = 0, camera = -1;
   GltfOptions gltf;
+  double max_memory_gb = 0;  // 0: the machine's physical memory
 };
+
+// Bytes Prism budgets per pixel of the image (film, output copies) and per mesh instance (scene,
+// BVH, world), to refuse work that would not fit in --max-memory before allocating it.
+inline constexpr uint64_t kBytesPerPixel = 64, kBytesPerInstance = 512;
+
+// Validators for positive counts up to INT_MAX (without a 309-digit range in the message) and
+// for seeds (0 to 2^64 − 1, no silent wrap of −1).
+const CLI::Validator& positive_count();
+const CLI::Validator& seed_value();
 
 // The scene file (positional), --env / --env-map / --env-rotate / --env-scale, --width,
 // --height, --camera, and the glTF choices of add_gltf_options.
 void add_scene_options(CLI::App* cmd, SceneArgs& args);
 
-// --scene, --variant, --time and --animation.
+// --scene, --variant, --time, --animation and --allow-external-paths.
 void add_gltf_options(CLI::App* cmd, GltfOptions& options);
 
 // --spp, --seed, --threads, --max-depth, --integrator, --wavelengths, --sampler, --light-sampling.

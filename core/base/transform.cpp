@@ -104,4 +104,49 @@ Transform inverse(const Transform& t) {
   return r;
 }
 
+AffineTransform::AffineTransform(const Transform& t) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) m[i][j] = float(t.m[i][j]);
+}
+
+Transform AffineTransform::transform() const {
+  Transform t;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) t.m[i][j] = m[i][j];
+  return t;
+}
+
+double AffineTransform::determinant() const {
+  const auto a = [&](int i, int j) { return double(m[i][j]); };
+  return a(0, 0) * (a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)) - a(0, 1) * (a(1, 0) * a(2, 2) - a(1, 2) * a(2, 0)) +
+         a(0, 2) * (a(1, 0) * a(2, 1) - a(1, 1) * a(2, 0));
+}
+
+// [A t]⁻¹ = [A⁻¹ −A⁻¹t] with A⁻¹ = adj(A) / det(A).
+Transform AffineTransform::inverse() const {
+  const auto a = [&](int i, int j) { return double(m[i][j]); };
+  const double det = determinant();
+  if (det == 0 || !std::isfinite(det)) return Transform{{}};
+  Transform r;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      // Cofactor of a(j, i): the adjugate is the transposed cofactor matrix.
+      const int r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+      r.m[i][j] = (a(r0, c0) * a(r1, c1) - a(r0, c1) * a(r1, c0)) / det;
+    }
+  for (int i = 0; i < 3; ++i) r.m[i][3] = -(r.m[i][0] * a(0, 3) + r.m[i][1] * a(1, 3) + r.m[i][2] * a(2, 3));
+  return r;
+}
+
+Vec3d AffineTransform::point(const Vec3d& p) const {
+  return {m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
+          m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
+          m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]};
+}
+
+Vec3d AffineTransform::vector(const Vec3d& v) const {
+  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+}
+
 }  // namespace prism

@@ -24,6 +24,22 @@ struct Transform {
   bool operator==(const Transform&) const = default;
 };
 
+// An affine transform's top three rows rounded to float: the compact form each instance keeps
+// (48 bytes, not 128, so that millions of instances fit). Applied in double like Transform, so
+// every structure built from an instance sees the same numbers.
+struct AffineTransform {
+  std::array<std::array<float, 4>, 3> m{{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}};
+
+  AffineTransform() = default;
+  AffineTransform(const Transform& t);  // implicit: rounds each entry (the bottom row is dropped)
+  Transform transform() const;          // exact
+  Transform inverse() const;            // by the adjugate, in double; all zeros when singular
+  double determinant() const;           // of the linear part: < 0 means the transform mirrors
+  Vec3d point(const Vec3d& p) const;
+  Vec3d vector(const Vec3d& v) const;
+  bool operator==(const AffineTransform&) const = default;
+};
+
 Transform inverse(const Transform& t);
 Transform transpose(const Transform& t);
 double determinant3x3(const Transform& t);  // of the linear part: < 0 means the transform mirrors

@@ -1,6 +1,8 @@
 #include "render/camera.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "base/error.h"
 
@@ -15,7 +17,8 @@ Camera::Camera(const CameraDesc& desc, int width, int height)
   forward_ = Vec3f(normalize(f));
   right_ = Vec3f(normalize(cross(f, u)));
   up_ = cross(right_, forward_);
-  if (!is_finite(forward_) || !is_finite(right_)) fail("camera '{}' has a degenerate transform", desc.name);
+  if (!is_finite(eye_) || !is_finite(forward_) || !is_finite(right_))
+    fail("camera '{}' has a degenerate transform", desc.name);
   const float aspect = float(width) / float(height);
   if (projection_ == CameraDesc::Projection::perspective) {
     half_h_ = std::tan(desc.yfov / 2);
@@ -67,11 +70,15 @@ CameraDesc framing_camera(const Bounds3f& bounds, float aspect) {
 }
 
 Vec2i resolve_resolution(int width, int height, const CameraDesc& camera, int default_width) {
-  const float aspect = camera.aspect.value_or(1.f);
+  const double aspect = camera.aspect.value_or(1.f);
+  // A side from the other and the aspect, within [1, INT_MAX] even for an extreme aspect.
+  const auto side = [](double v) {
+    return int(std::clamp(std::round(v), 1.0, double(std::numeric_limits<int>::max())));
+  };
   if (width > 0 && height > 0) return {width, height};
-  if (width > 0) return {width, std::max(1, int(std::lround(width / aspect)))};
-  if (height > 0) return {std::max(1, int(std::lround(height * aspect))), height};
-  return {default_width, std::max(1, int(std::lround(default_width / aspect)))};
+  if (width > 0) return {width, side(width / aspect)};
+  if (height > 0) return {side(height * aspect), height};
+  return {default_width, side(default_width / aspect)};
 }
 
 }  // namespace prism

@@ -26,6 +26,12 @@ EnvironmentMapDesc load_environment_map(const std::filesystem::path& file, float
       fail("{}: pixel ({}, {}) is not finite", name, i / 3 % image.width, i / 3 / image.width);
     if (image.rgb[i] < 0) ++negative, image.rgb[i] = 0;
   }
+  const float brightest = *std::max_element(image.rgb.begin(), image.rgb.end());
+  if (brightest > kMaxEmission)
+    fail("{}: a value of {:g} exceeds {:g}, the brightest radiance Prism accepts", name, brightest, kMaxEmission);
+  if (double(brightest) * scale > kMaxEmission)
+    fail("{}: --env-scale {:g} makes its brightest value {:g}, over the {:g} Prism accepts", name, scale,
+         double(brightest) * scale, kMaxEmission);
   if (negative > 0) log::warn("{}: {} negative values (outside Rec.709) set to 0", name, negative);
   return {name, std::move(image), radians(rotation_degrees), scale};
 }

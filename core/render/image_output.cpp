@@ -10,7 +10,6 @@
 #include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
-#include <stb_image.h>
 #include <stb_image_write.h>
 
 #include <algorithm>
@@ -20,6 +19,11 @@
 #include "base/error.h"
 
 namespace prism {
+
+void check_image_size(const std::filesystem::path& file, int64_t width, int64_t height) {
+  if (width < 1 || height < 1 || width > int64_t(kMaxImagePixels) || width * height > int64_t(kMaxImagePixels))
+    fail("{}: a {}x{} image (Prism reads images of 1 to 2^27 pixels)", file.string(), width, height);
+}
 
 void write_exr(const std::filesystem::path& file, const ExrImage& image, bool half) {
   if (image.rgb.size() != size_t(image.width) * image.height * 3) fail("{}: image size mismatch", file.string());
@@ -98,6 +102,7 @@ ExrPlanes read_exr_planes(const std::filesystem::path& file, const std::vector<s
     for (const std::string& name : names)
       if (!in.header().channels().findChannel(name)) throw std::runtime_error("it has no channel " + name);
     const Imath::Box2i dw = in.header().dataWindow();
+    check_image_size(file, int64_t(dw.max.x) - dw.min.x + 1, int64_t(dw.max.y) - dw.min.y + 1);
     ExrPlanes img{dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, {}};
     const size_t pixels = size_t(img.width) * img.height;
     img.planes.resize(pixels * names.size());
@@ -128,18 +133,6 @@ RgbImage read_exr(const std::filesystem::path& file) {
 
 std::vector<float> read_exr_channel(const std::filesystem::path& file, const std::string& name) {
   return read_exr_planes(file, {name}).planes;
-}
-
-RgbImage read_hdr(const std::filesystem::path& file) {
-  // stbi_loadf would also read an 8-bit image, through an assumed gamma: refuse those.
-  if (!stbi_is_hdr(file.c_str())) fail("{}: not a Radiance HDR (RGBE) image", file.string());
-  RgbImage img;
-  int channels = 0;
-  float* data = stbi_loadf(file.c_str(), &img.width, &img.height, &channels, 3);
-  if (!data) fail("{}: cannot read Radiance HDR image: {}", file.string(), stbi_failure_reason());
-  img.rgb.assign(data, data + size_t(img.width) * img.height * 3);
-  stbi_image_free(data);
-  return img;
 }
 
 }  // namespace prism

@@ -4,6 +4,7 @@
 // the destination folder, renamed into place only when complete, so a failed or interrupted
 // render never leaves a half-written image.
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <variant>
@@ -39,6 +40,13 @@ void write_exr(const std::filesystem::path& file, const ExrImage& image, bool ha
 void write_png(const std::filesystem::path& file, int width, int height, const std::vector<float>& rgb);
 
 // Reads the R, G and B channels of an OpenEXR file (environment maps, tests, references).
+// The largest image read_exr and read_hdr accept (2^27 pixels, 1.6 GB of float RGB).
+inline constexpr uint64_t kMaxImagePixels = uint64_t(1) << 27;
+
+// Fails naming `file` unless 1 ≤ width, height and width × height ≤ kMaxImagePixels; called
+// before anything is allocated for the image.
+void check_image_size(const std::filesystem::path& file, int64_t width, int64_t height);
+
 RgbImage read_exr(const std::filesystem::path& file);
 // Reads one channel of an OpenEXR file as floats, top row first.
 std::vector<float> read_exr_channel(const std::filesystem::path& file, const std::string& name);

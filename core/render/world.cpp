@@ -13,42 +13,31 @@ namespace prism {
 Accel build_accel(const Scene& scene, const AccelOptions& options) {
   std::vector<AccelMesh> meshes;
   for (const Mesh& m : scene.meshes) meshes.push_back({m.positions, m.indices});
-  std::vector<AccelInstance> instances;
-  for (const Instance& inst : scene.instances) instances.push_back({inst.mesh, inst.to_world});
-  return Accel(meshes, instances, options);
+  return Accel(meshes, scene.instances, options);
 }
 
 World::World(const Scene& scene, const AccelOptions& accel)
     : scene_(scene), features_(analyze_features(scene)), accel_(build_accel(scene, accel)) {
-  for (const Instance& inst : scene.instances) {
-    InstanceData d{&scene.meshes[inst.mesh], &inst.to_world, {}, {}, determinant3x3(inst.to_world) < 0};
-    const Transform inv_t = transpose(inverse(inst.to_world));
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) {
-        d.linear[r][c] = float(inst.to_world.m[r][c]);
-        d.normal_matrix[r][c] = float(inv_t.m[r][c]);
-      }
-    instances_.push_back(d);
-  }
   add_lights();
 }
 
 // Transformed exactly as the accel transforms the triangles it flattens into world space, so the
 // shading point lies on the very triangle the ray hit. (A hit on an instanced mesh is found in
 // the mesh's space; its barycentrics carry over, as the transform is affine.)
-std::array<Vec3f, 3> World::world_vertices(const InstanceData& inst, uint32_t prim) const {
-  const Mesh& m = *inst.mesh;
+std::array<Vec3f, 3> World::world_vertices(const Instance& inst, uint32_t prim) const {
+  const Mesh& m = scene_.meshes[inst.mesh];
   std::array<Vec3f, 3> v;
-  for (int k = 0; k < 3; ++k) v[k] = Vec3f(inst.to_world->point(Vec3d(m.positions[m.indices[3 * prim + k]])));
+  for (int k = 0; k < 3; ++k) v[k] = Vec3f(inst.to_world.point(Vec3d(m.positions[m.indices[3 * prim + k]])));
   return v;
 }
 
 void World::add_lights() {
   std::vector<float> powers;
   std::vector<std::optional<float>> material_luminance(scene_.materials.size());  // once per emitting material
-  instance_light_base_.assign(instances_.size(), -1);
-  for (uint32_t i = 0; i < instances_.size(); ++i) {
-    const Mesh& mesh = *instances_[i].mesh;
+  instance_light_base_.assign(scene_.instances.size(), -1);
+  for (uint32_t i = 0; i < scene_.instances.size(); ++i) {
+    const Instance& inst = scene_.instances[i];
+    const Mesh& mesh = scene_.meshes[inst.mesh];
     const Material& material = scene_.materials[mesh.material];
     if (!material.emission) continue;
     const Texture* texture = material.emission_texture ? &*material.emission_texture : nullptr;
@@ -63,9 +52,9 @@ void World::add_lights() {
     }
     instance_light_base_[i] = int(lights_.size());
     for (uint32_t p = 0; p < mesh.indices.size() / 3; ++p) {
-      const auto v = world_vertices(instances_[i], p);
+      const auto v = world_vertices(inst, p);
       const float area = triangle_area(v[0], v[1], v[2]);
-      const Vec3f n = triangle_normal(v[0], v[1], v[2]) * (instances_[i].mirrored ? -1.f : 1.f);
+      const Vec3f n = triangle_normal(v[0], v[1], v[2]) * (inst.to_world.determinant() < 0 ? -1.f : 1.f);
       std::array<Vec2f, 3> uv{};
       if (texture && !mesh.uv[texture->texcoord].empty())
         for (int k = 0; k < 3; ++k) uv[k] = mesh.uv[texture->texcoord][mesh.indices[3 * p + k]];
@@ -119,9 +108,20 @@ void World::add_lights() {
 
 namespace {
 
-Vec3f apply(const float m[3][3], const Vec3f& v) {
-  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
-          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+// A normal under an instance's transform: the cofactor matrix of its linear part, which is the
+// inverse transpose times the determinant (the caller normalises it and turns it to the
+// geometric normal's side, which restores length and sign).
+Vec3f transform_normal(const AffineTransform& t, const Vec3f& n) {
+  const auto& a = t.m;
+  Vec3f r(0, 0, 0);
+  for (int i = 0; i < 3; ++i) {
+    const int i0 = (i + 1) % 3, i1 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j0 = (j + 1) % 3, j1 = (j + 2) % 3;
+      r[i] += (a[i0][j0] * a[i1][j1] - a[i0][j1] * a[i1][j0]) * n[j];
+    }
+  }
+  return r;
 }
 
 // Barycentric interpolation of a per-vertex attribute of triangle prim.
@@ -142,14 +142,15 @@ T interpolate(const std::vector<T>& values, const Mesh& m, uint32_t prim, const 
 }  // namespace
 
 SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const {
-  const InstanceData& inst = instances_[hit.instance];
-  const Mesh& m = *inst.mesh;
-  const auto v = world_vertices(inst, hit.prim);
+  const Instance& instance = scene_.instances[hit.instance];
+  const Mesh& m = scene_.meshes[instance.mesh];
+  const bool mirrored = instance.to_world.determinant() < 0;  // winding (and so the front side) flips
+  const auto v = world_vertices(instance, hit.prim);
   const float b[3] = {hit.b0, hit.b1, hit.b2};
   SurfaceInteraction si;
   si.p = v[0] * b[0] + v[1] * b[1] + v[2] * b[2];
   si.p_error = (abs(v[0] * b[0]) + abs(v[1] * b[1]) + abs(v[2] * b[2])) * gamma(7);
-  si.n = triangle_normal(v[0], v[1], v[2]) * (inst.mirrored ? -1.f : 1.f);
+  si.n = triangle_normal(v[0], v[1], v[2]) * (mirrored ? -1.f : 1.f);
   si.ns = si.n;
   si.wo = -ray.d;
   si.t = hit.t;
@@ -161,7 +162,7 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
   if (!m.colors.empty()) si.at.vertex_color = interpolate(m.colors, m, hit.prim, b);
 
   if (!m.normals.empty()) {
-    const Vec3f ns = apply(inst.normal_matrix, interpolate(m.normals, m, hit.prim, b));
+    const Vec3f ns = transform_normal(instance.to_world, interpolate(m.normals, m, hit.prim, b));
     const float len = length(ns);
     // The shading normal is taken on the geometric normal's side; a zero one falls back to it.
     if (len > 0 && std::isfinite(len)) si.ns = face_forward(ns / len, si.n);
@@ -173,13 +174,13 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
   const Vec3f ns = si.ns;
   const auto map_normal = [&](const Texture& texture, float scale) -> std::optional<Vec3f> {
     const auto t4 = interpolate(m.tangents, m, hit.prim, b);
-    const Vec3f t_world = apply(inst.linear, Vec3f(t4[0], t4[1], t4[2]));
+    const Vec3f t_world(instance.to_world.vector(Vec3d(t4[0], t4[1], t4[2])));
     const Vec3f t = t_world - ns * dot(ns, t_world);
     const auto c = texture.lookup(si.at.uv[texture.texcoord], false);
     const Vec3f local((2 * c[0] - 1) * scale, (2 * c[1] - 1) * scale, 2 * c[2] - 1);
     if (length_squared(t) == 0 || length_squared(local) == 0) return std::nullopt;
     const Vec3f tn = normalize(t);
-    const Vec3f bn = cross(ns, tn) * ((t4[3] < 0) != inst.mirrored ? -1.f : 1.f);
+    const Vec3f bn = cross(ns, tn) * ((t4[3] < 0) != mirrored ? -1.f : 1.f);
     const Vec3f mapped = tn * local.x + bn * local.y + ns * local.z;
     if (length_squared(mapped) == 0 || !is_finite(mapped)) return std::nullopt;
     return face_forward(normalize(mapped), si.n);

@@ -49,21 +49,13 @@ class World {
   const Light* environment() const { return environment_light_ < 0 ? nullptr : &lights_[environment_light_]; }
 
  private:
-  struct InstanceData {
-    const Mesh* mesh;
-    const Transform* to_world;
-    float linear[3][3];         // the linear part (for tangents)
-    float normal_matrix[3][3];  // its inverse transpose (for normals)
-    bool mirrored;              // negative determinant: winding (and so the front side) flips
-  };
-  std::array<Vec3f, 3> world_vertices(const InstanceData& inst, uint32_t prim) const;
+  std::array<Vec3f, 3> world_vertices(const Instance& inst, uint32_t prim) const;
   SurfaceInteraction interaction(const Ray& ray, const AccelHit& hit) const;
   bool cut_away(const SurfaceInteraction& si, const Ray& ray) const;
   void add_lights();
 
   const Scene& scene_;
   SceneFeatures features_;
-  std::vector<InstanceData> instances_;
   Accel accel_;
   std::vector<Light> lights_;
   std::vector<int> instance_light_base_;

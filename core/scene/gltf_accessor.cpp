@@ -71,10 +71,16 @@ const unsigned char* view_elements(const tinygltf::Model& model, int view_index,
   stride = view.byteStride ? view.byteStride : element_size;
   if (stride < element_size)
     fail("{}: byteStride {} is smaller than an element ({} bytes)", what, stride, element_size);
-  const size_t needed = count == 0 ? 0 : offset + stride * (count - 1) + element_size;
-  if (count > view.byteLength || needed > view.byteLength || view.byteOffset + view.byteLength > buffer.data.size())
-    fail("{}: accessor reads past the end of its data (needs {} bytes of bufferView {} holding {}, buffer holds {})",
-         what, needed, view_index, view.byteLength, buffer.data.size());
+  // Compared by subtraction, never by a sum or product that could wrap around 2^64.
+  if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset)
+    fail("{}: bufferView {} (bytes {} + {}) lies outside its buffer of {} bytes", what, view_index, view.byteOffset,
+         view.byteLength, buffer.data.size());
+  if (count > 0 && (offset > view.byteLength || element_size > view.byteLength - offset ||
+                    count - 1 > (view.byteLength - offset - element_size) / stride))
+    fail(
+        "{}: accessor reads past the end of its data ({} elements of {} bytes every {} from byte {} of bufferView {} "
+        "holding {})",
+        what, count, element_size, stride, offset, view_index, view.byteLength);
   return buffer.data.data() + view.byteOffset + offset;
 }
 

@@ -2,8 +2,10 @@
 // The glTF importer's inside, shared by its files (not a public header):
 //   gltf_loader.cpp     reading the file, the extensions Prism honours, the import's order
 //   gltf_materials.cpp  materials, textures and images
+//   gltf_material_models.cpp  KHR_materials_unlit, KHR_materials_pbrSpecularGlossiness
 //   gltf_meshes.cpp     primitives to triangle meshes; each node's copy of a mesh that deforms
 //   gltf_nodes.cpp      the node hierarchy: instances, cameras, punctual lights
+//   gltf_instancing.cpp EXT_mesh_gpu_instancing
 //   gltf_animation.cpp  node poses and animation channels
 //   gltf_morph.cpp, gltf_skin.cpp, gltf_variants.cpp  morph targets, skins, material variants
 
@@ -41,7 +43,9 @@ const char* extension_handling(const std::string& extension);
 // at other times of its animations.
 class GltfLoader {
  public:
-  GltfLoader(const tinygltf::Model& model, const std::filesystem::path& file, const GltfOptions& options, Scene& scene);
+  // Fails on `parse_errors` (the parser's, in a model it did build) after the extension check.
+  GltfLoader(const tinygltf::Model& model, const std::filesystem::path& file, const GltfOptions& options, Scene& scene,
+             const std::string& parse_errors);
 
   void load();             // the scene as `options` choose it
   bool pose(double time);  // false: nothing moved
@@ -66,12 +70,18 @@ class GltfLoader {
   // materials (gltf_materials.cpp)
   Material convert_material(const tinygltf::Material& m, int index);
   std::shared_ptr<const Image> image(int index, const std::string& context);
+  int texture_source(const tinygltf::Texture& t, int index, const std::string& context);  // gltf_texture_source.cpp
   std::optional<Texture> texture(int index, int texcoord, const tinygltf::ExtensionMap& extensions,
                                  const std::string& context);
   std::optional<Texture> extension_texture(const tinygltf::Material& m, const char* extension, const char* field,
                                            const std::string& context);
   PbrMaterial surface(const tinygltf::Material& m, Rgb base, const std::string& context);
   uint32_t material_index(int gltf_material, const std::string& context);
+  Rgb clamp_emission(const std::array<double, 3>& rgb, const std::string& context);
+
+  // older material models (gltf_material_models.cpp)
+  void make_unlit(Material& out);
+  void apply_spec_gloss(const tinygltf::Material& m, PbrMaterial& p, const std::string& context);
 
   // meshes (gltf_meshes.cpp)
   const std::vector<uint32_t>& mesh(int index);
@@ -92,8 +102,13 @@ class GltfLoader {
   // nodes (gltf_nodes.cpp)
   void compute_node_world();
   void traverse_scene();
-  void visit(int index, const Transform& parent, std::vector<bool>& on_path);
+  uint64_t count_instances(const std::vector<int>& roots) const;
+  void check_world_bounds(uint32_t mesh, const Transform& world, const std::string& context);
   void add_camera(const tinygltf::Camera& cam, const Transform& world, const std::string& context);
+  // EXT_mesh_gpu_instancing (gltf_instancing.cpp); the count is 1 for a node without it
+  uint64_t gpu_instance_count(const tinygltf::Node& node) const;
+  void add_gpu_instances(const tinygltf::Node& node, const std::vector<uint32_t>& meshes, const Transform& world,
+                         const std::string& context);
   void add_light(const tinygltf::Light& light, const Transform& world, const std::string& context);
 
   const tinygltf::Model& model_;
@@ -116,6 +131,8 @@ class GltfLoader {
   std::vector<bool> mesh_loaded_;
   std::map<int, uint32_t> material_map_;
   std::map<int, std::shared_ptr<const Image>> images_;
+  std::vector<std::optional<std::pair<Vec3d, Vec3d>>> mesh_bounds_;  // per scene mesh, filled on first use
+  uint64_t max_instances_;
   int default_material_ = -1;
   std::set<std::string> warned_;
 };

@@ -1,9 +1,10 @@
 #include "scene/gltf_loader.h"
 
 #include <cmath>
-#include <fstream>
 
 #include "base/log.h"
+#include "scene/gltf_compression.h"
+#include "scene/gltf_file.h"
 #include "scene/gltf_import.h"
 #include "scene/gltf_variants.h"
 
@@ -28,6 +29,14 @@ const std::map<std::string, const char*> kSupportedExtensions = {
     {"KHR_materials_sheen", "Charlie sheen over the base, albedo-scaled layering"},
     {"KHR_materials_iridescence", "exact thin-film interference (Airy sum) per wavelength"},
     {"KHR_materials_diffuse_transmission", "a Lambertian lobe on the far side"},
+    {"KHR_draco_mesh_compression", "Draco-compressed primitives decoded (libdraco)"},
+    {"EXT_meshopt_compression", "meshoptimizer-compressed buffer views decoded"},
+    {"KHR_meshopt_compression", "meshoptimizer-compressed buffer views decoded"},
+    {"KHR_materials_unlit", "base colour emitted, nothing scattered"},
+    {"KHR_materials_pbrSpecularGlossiness", "converted to metallic-roughness"},
+    {"EXT_texture_webp", "WebP textures (libwebp)"},
+    {"KHR_texture_basisu", "KTX2 not decoded: the texture's PNG/JPEG source is used"},
+    {"EXT_mesh_gpu_instancing", "TRANSLATION, ROTATION, SCALE per instance, into the two-level BVH"},
 };
 
 // Images are kept encoded at load time and decoded only when a material that the scene's
@@ -36,13 +45,6 @@ bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::st
                         const unsigned char* bytes, int size, void*) {
   image->image.assign(bytes, bytes + size);
   return true;
-}
-
-bool is_binary_gltf(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  char magic[4] = {};
-  in.read(magic, 4);
-  return in && std::string(magic, 4) == "glTF";
 }
 
 }  // namespace
@@ -71,13 +73,15 @@ const char* extension_handling(const std::string& extension) {
 }
 
 GltfLoader::GltfLoader(const tinygltf::Model& model, const std::filesystem::path& file, const GltfOptions& options,
-                       Scene& scene)
+                       Scene& scene, const std::string& parse_errors)
     : model_(model),
       file_(file.string()),
       scene_(scene),
       meshes_(model.meshes.size()),
-      mesh_loaded_(model.meshes.size(), false) {
+      mesh_loaded_(model.meshes.size(), false),
+      max_instances_(options.max_instances) {
   check_extensions();
+  if (!parse_errors.empty()) fail("{}: not a valid glTF file: {}", file_, parse_errors);
   choose(options);
 }
 
@@ -88,6 +92,7 @@ void GltfLoader::load() {
 }
 
 void GltfLoader::choose(const GltfOptions& options) {
+  if (model_.defaultScene < -1) fail("{}: scene index {} is negative", file_, model_.defaultScene);
   scene_index_ = options.scene.value_or(model_.defaultScene >= 0 ? model_.defaultScene : 0);
   if (options.scene && size_t(*options.scene) >= std::max<size_t>(model_.scenes.size(), 1))
     fail("{}: --scene {} requested, but the file has {} scene(s)", file_, *options.scene, model_.scenes.size());
@@ -143,35 +148,22 @@ void GltfLoader::warn_once(const std::string& message) {
   if (warned_.insert(message).second) log::warn("{}: {}", file_, message);
 }
 
-namespace {
-
-tinygltf::Model read_gltf(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file)) fail("{}: no such file", file.string());
-  tinygltf::TinyGLTF reader;
-  reader.SetImageLoader(keep_encoded_image, nullptr);
-  tinygltf::Model model;
-  std::string err, warn;
-  const bool ok = is_binary_gltf(file) ? reader.LoadBinaryFromFile(&model, &err, &warn, file.string())
-                                       : reader.LoadASCIIFromFile(&model, &err, &warn, file.string());
-  if (!ok) {
-    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-    fail("{}: not a valid glTF file: {}", file.string(), err.empty() ? "unknown error" : err);
-  }
-  return model;
-}
-
-}  // namespace
-
 // The parsed file, the scene built from it and the loader that keeps it posed; they refer to
 // each other, so they stay together at one address.
 struct GltfScene::State {
   std::unique_ptr<tinygltf::Model> model;
   Scene scene;
   std::unique_ptr<GltfLoader> loader;
-  State(const std::filesystem::path& file, const GltfOptions& options)
-      : model(std::make_unique<tinygltf::Model>(read_gltf(file))),
-        loader(std::make_unique<GltfLoader>(*model, file, options, scene)) {
+  State(const std::filesystem::path& file, const GltfOptions& options) : model(std::make_unique<tinygltf::Model>()) {
+    tinygltf::TinyGLTF reader;
+    reader.SetImageLoader(keep_encoded_image, nullptr);
+    const std::string errors = read_gltf_file(reader, *model, file, options.allow_external_paths);
+    if (errors.empty()) {  // else the loader names them (after any required extension Prism lacks)
+      decode_meshopt(*model, file.string());
+      decode_draco(*model, file.string());
+    }
     scene.source = file;
+    loader = std::make_unique<GltfLoader>(*model, file, options, scene, errors);
   }
   const GltfLoader& open() const {
     if (!loader) fail("{}: internal error: the file was closed", scene.source.string());

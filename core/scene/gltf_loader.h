@@ -3,6 +3,7 @@
 // Every index and byte range in the file is checked; a malformed file raises prism::Error with
 // the file name and what is wrong, and never crashes.
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -13,12 +14,16 @@
 
 namespace prism {
 
-// Which of the file's scenes, material variants and animation poses to build.
+// Which of the file's scenes, material variants and animation poses to build, and what the file
+// may reach.
 struct GltfOptions {
   std::optional<int> scene;    // default: the file's `scene`, else 0
   std::string variant;         // KHR_materials_variants name; empty: the default materials
   std::optional<double> time;  // pose the animations at this time [s]; unset: the file's own pose
   std::string animation;       // a name or 0-based index; empty: every animation
+  // Limits for untrusted files:
+  bool allow_external_paths = false;           // URIs may name files outside the scene file's folder
+  uint64_t max_instances = uint64_t(1) << 32;  // more node visits and mesh instances than this are refused
 };
 
 Scene load_gltf(const std::filesystem::path& file, const GltfOptions& options = {});

@@ -27,6 +27,7 @@ Material GltfLoader::convert_material(const tinygltf::Material& m, int index) {
   surface_model.transmission_texture =
       extension_texture(m, "KHR_materials_transmission", "transmissionTexture", context);
   surface_model.thickness_texture = extension_texture(m, "KHR_materials_volume", "thicknessTexture", context);
+  if (m.extensions.count("KHR_materials_pbrSpecularGlossiness")) apply_spec_gloss(m, surface_model, context);
   out.kind = std::move(surface_model);
   out.normal_texture = texture(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions, context);
   out.normal_scale = float(m.normalTexture.scale);
@@ -38,7 +39,8 @@ Material GltfLoader::convert_material(const tinygltf::Material& m, int index) {
     fail("{}: {}: unknown alphaMode '{}'", file_, context, m.alphaMode);
   out.alpha_cutoff = float(m.alphaCutoff);
   const auto& ef = m.emissiveFactor;
-  if (ef.size() != 3 || !all_finite(ef)) fail("{}: {}: emissiveFactor must be 3 finite numbers", file_, context);
+  if (ef.size() != 3 || !all_finite(ef) || *std::min_element(ef.begin(), ef.end()) < 0)
+    fail("{}: {}: emissiveFactor must be 3 finite numbers ≥ 0", file_, context);
   double strength = 1;
   if (const auto it = m.extensions.find("KHR_materials_emissive_strength"); it != m.extensions.end()) {
     const auto& v = it->second.Get("emissiveStrength");
@@ -46,12 +48,13 @@ Material GltfLoader::convert_material(const tinygltf::Material& m, int index) {
     if (!std::isfinite(strength) || strength < 0)
       fail("{}: {}: emissiveStrength must be a non-negative number", file_, context);
   }
-  out.emission_rgb = {float(ef[0] * strength), float(ef[1] * strength), float(ef[2] * strength)};
+  out.emission_rgb = clamp_emission({ef[0] * strength, ef[1] * strength, ef[2] * strength}, context);
   if (out.emission_rgb.max() > 0) {
     out.emission = RgbIlluminantSpectrum(out.emission_rgb);
     out.emission_texture =
         texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions, context);
   }
+  if (m.extensions.count("KHR_materials_unlit")) make_unlit(out);
   return out;
 }
 
@@ -75,9 +78,8 @@ std::optional<Texture> GltfLoader::texture(int index, int texcoord, const tinygl
   if (index < 0) return std::nullopt;
   check_index(index, model_.textures, "texture", context);
   const tinygltf::Texture& t = model_.textures[index];
-  if (t.source < 0) fail("{}: {}: texture {} has no image source", file_, context, index);
   Texture out;
-  out.image = image(t.source, context);
+  out.image = image(texture_source(t, index, context), context);
   out.texcoord = texcoord;
   if (t.sampler >= 0) {
     check_index(t.sampler, model_.samplers, "sampler", context);
@@ -214,6 +216,7 @@ PbrMaterial GltfLoader::surface(const tinygltf::Material& m, Rgb base, const std
   // σ_a = −ln(attenuationColor) / attenuationDistance per channel (world units).
   const double thickness = number("KHR_materials_volume", "thicknessFactor", 0, 0, 1e30);
   const double distance = number("KHR_materials_volume", "attenuationDistance", kInfinity, 0, kInfinity);
+  if (distance == 0) fail("{}: {}: KHR_materials_volume.attenuationDistance must be > 0", file_, context);
   std::optional<Spectrum> absorption;
   if (thickness > 0 && std::isfinite(distance)) {
     Rgb sigma;
@@ -231,6 +234,19 @@ PbrMaterial GltfLoader::surface(const tinygltf::Material& m, Rgb base, const std
     p.metallic = 1;
   }
   return p;
+}
+
+// Emission beyond kMaxEmission (legal glTF, e.g. emissiveStrength 1e38) is clamped with a warning.
+Rgb GltfLoader::clamp_emission(const std::array<double, 3>& rgb, const std::string& context) {
+  Rgb out;
+  for (int c = 0; c < 3; ++c) {
+    if (rgb[c] > kMaxEmission)
+      warn_once(fmt::format("{}: emission or intensity {:g} clamped to {:g}",
+                            context.rfind(file_ + ": ", 0) == 0 ? context.substr(file_.size() + 2) : context, rgb[c],
+                            kMaxEmission));
+    out[c] = float(std::min(rgb[c], double(kMaxEmission)));
+  }
+  return out;
 }
 
 uint32_t GltfLoader::material_index(int gltf_material, const std::string& context) {

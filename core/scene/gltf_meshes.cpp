@@ -2,6 +2,8 @@
 // the vertex count, one Mesh per triangle primitive; strips and fans become triangle lists.
 // Meshes that morph or are skinned get a copy per node, re-posed when their inputs change.
 
+#include <cmath>
+
 #include "base/log.h"
 #include "scene/gltf_accessor.h"
 #include "scene/gltf_import.h"
@@ -64,7 +66,7 @@ std::optional<Mesh> GltfLoader::convert_primitive(const tinygltf::Primitive& pri
     // triangle ids, unlike raybench, whose global numbering `prism bench rays` follows.
     const tinygltf::Accessor& acc = model_.accessors[pos->second];
     if (acc.bufferView < 0 && !acc.sparse.isSparse) {
-      warn_once("skipping primitives whose POSITION accessor has no data (compressed meshes are not supported)");
+      warn_once("skipping primitives whose POSITION accessor has no data (no bufferView and no sparse values)");
       return std::nullopt;
     }
   }
@@ -98,8 +100,17 @@ std::optional<Mesh> GltfLoader::convert_primitive(const tinygltf::Primitive& pri
     const auto c = read_accessor_floats(model_, col->second, components, context + " COLOR_0");
     if (c.size() / components != mesh.positions.size())
       fail("{} COLOR_0: {} colours for {} vertices", context, c.size() / components, mesh.positions.size());
+    // Colours are factors in [0, 1] (glTF §3.7.2.1): others, NaN included (read as 1), are clamped.
+    bool clamped = false;
+    const auto factor = [&](float v) {
+      const float f = std::isnan(v) ? 1.f : std::clamp(v, 0.f, 1.f);
+      clamped |= f != v;
+      return f;
+    };
     for (size_t i = 0; i < c.size(); i += components)
-      mesh.colors.push_back({c[i], c[i + 1], c[i + 2], components == 4 ? c[i + 3] : 1.f});
+      mesh.colors.push_back(
+          {factor(c[i]), factor(c[i + 1]), factor(c[i + 2]), components == 4 ? factor(c[i + 3]) : 1.f});
+    if (clamped) warn_once("COLOR_0 values outside [0, 1] or NaN clamped to [0, 1]");
   }
   if (const auto tan = prim.attributes.find("TANGENT"); tan != prim.attributes.end()) {
     const auto t = read_accessor_floats(model_, tan->second, 4, context + " TANGENT");

@@ -3,9 +3,17 @@
 namespace prism {
 
 Bounds3f Scene::world_bounds() const {
+  std::vector<Bounds3f> mesh_bounds(meshes.size());
+  for (size_t m = 0; m < meshes.size(); ++m)
+    for (const Vec3f& p : meshes[m].positions) mesh_bounds[m].extend(p);
   Bounds3f b;
-  for (const Instance& inst : instances)
-    for (const Vec3f& p : meshes[inst.mesh].positions) b.extend(Vec3f(inst.to_world.point(Vec3d(p))));
+  for (const Instance& inst : instances) {
+    const Bounds3f& mb = mesh_bounds[inst.mesh];
+    if (mb.empty()) continue;
+    for (int corner = 0; corner < 8; ++corner)
+      b.extend(Vec3f(inst.to_world.point(
+          Vec3d((corner & 1 ? mb.hi : mb.lo).x, (corner & 2 ? mb.hi : mb.lo).y, (corner & 4 ? mb.hi : mb.lo).z))));
+  }
   for (const PointLight& l : point_lights) b.extend(l.position);
   for (const SpotLight& l : spot_lights) b.extend(l.position);
   return b;

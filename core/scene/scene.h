@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "base/bounds.h"
+#include "base/instance.h"
 #include "base/transform.h"
 #include "materials/material.h"
 #include "spectral/spectrum.h"
@@ -31,11 +32,6 @@ struct Mesh {
 // Per-vertex tangents from the texture coordinates (Lengyel 2001, "Computing Tangent Space
 // Basis Vectors for an Arbitrary Mesh"), for normal maps on meshes that bring none.
 void generate_tangents(Mesh& mesh, int uv_set);
-
-struct Instance {
-  uint32_t mesh;
-  Transform to_world;
-};
 
 struct CameraDesc {
   enum class Projection { perspective, orthographic };
@@ -97,6 +93,8 @@ struct Scene {
   std::optional<Spectrum> environment;                // constant radiance from every direction
   std::optional<EnvironmentMapDesc> environment_map;  // at most one of environment, environment_map
 
+  // A box around each instance's transformed mesh box: exact for translations and axis scales,
+  // a little loose under rotation, and O(instances) however large the meshes.
   Bounds3f world_bounds() const;
   size_t triangle_count() const;  // over all instances
 };

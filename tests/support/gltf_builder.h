@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-namespace prism::test {
+#include "support/test_scenes.h"  // base64
 
-std::string base64(const std::vector<unsigned char>& bytes);
+namespace prism::test {
 
 struct GltfBuilder {
   // Accessors of floats ("SCALAR", "VEC3", "VEC4", "MAT4", ...) and of u16 indices or joints;

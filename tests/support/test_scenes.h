@@ -53,6 +53,9 @@ TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, i
 TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, int height, int spp, int max_depth = 64,
                       uint64_t seed = 1, int threads = 0, IntegratorKind integrator = IntegratorKind::path);
 
+// RFC 4648 base64 of bytes (for data URIs in generated glTF files).
+std::string base64(const std::vector<unsigned char>& bytes);
+
 // A fresh empty folder for a test's files.
 std::filesystem::path temp_dir(const std::string& name);
 
