@@ -11,12 +11,18 @@
 // `transmission` ∈ [0, 1] weights the transmitted lobe (glTF's transmissionFactor; the rest
 // of the light goes to a diffuse base elsewhere); `tint` colours transmitted light; `specular`
 // scales the reflectance, s·F, leaving 1 − s·F to pass (KHR_materials_specular's factor).
+// Multiple scattering between the microfacets (Turquin 2019, "Practical multiple scattering
+// compensation for microfacet models"): the light a lossless rough interface loses, 1 − E(μ_o)
+// with E its single-scattering R + T albedo (SpecularAlbedo::interface, from the side of wo; for a
+// thin wall the white reflection albedo), is shared out in proportion to the lobes: f_ms = f / E(μ_o).
+// pdf and sampling are unchanged; `compensate` false leaves the single-scattering lobes.
 
 #include <optional>
 
 #include "materials/bsdf_sample.h"
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"
+#include "materials/specular_albedo.h"
 
 namespace prism {
 
@@ -33,9 +39,10 @@ class DielectricBsdf {
   // eta = n_back / n_front (the index behind the shading normal over the one in front), one
   // value for all lanes: a λ-dependent index terminates the secondary wavelengths first.
   DielectricBsdf(float alpha, float eta, const SampledSpectrum<N>& tint, bool thin, float transmission = 1.f,
-                 float specular = 1.f)
+                 float specular = 1.f, bool compensate = true)
       : distribution_(alpha),
         smooth_(TrowbridgeReitz::effectively_smooth(alpha) || eta == 1),
+        compensate_(compensate && !smooth_),
         eta_(eta),
         tint_(tint),
         thin_(thin),
@@ -73,18 +80,7 @@ class DielectricBsdf {
   }
 
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
-    const auto h = half_vector(wo, wi);
-    if (!h) return SampledSpectrum<N>(0.f);
-    const float F = fresnel(dot(wo, h->wm));
-    const float D = distribution_.D(h->wm);
-    if (h->reflection) return SampledSpectrum<N>(D * distribution_.G(wo, wi) * F / std::abs(4 * wi.z * wo.z));
-    if (thin_) {
-      const Vec3f mirrored(wi.x, wi.y, -wi.z);
-      return tint_ * (transmission_ * D * distribution_.G(wo, mirrored) * (1 - F) / std::abs(4 * wi.z * wo.z));
-    }
-    const float denom = sqr(dot(wi, h->wm) + dot(wo, h->wm) / h->eta_p) * wi.z * wo.z;
-    const float ft = D * distribution_.G(wo, wi) * (1 - F) * std::abs(dot(wi, h->wm) * dot(wo, h->wm) / denom);
-    return tint_ * (transmission_ * ft / sqr(h->eta_p));
+    return compensate_ ? single_scattering(wo, wi) / single_scattering_albedo(wo.z) : single_scattering(wo, wi);
   }
 
   float pdf(const Vec3f& wo, const Vec3f& wi) const {
@@ -149,6 +145,28 @@ class DielectricBsdf {
     return HalfVector{wm, reflection, eta_p};
   }
 
+  SampledSpectrum<N> single_scattering(const Vec3f& wo, const Vec3f& wi) const {
+    const auto h = half_vector(wo, wi);
+    if (!h) return SampledSpectrum<N>(0.f);
+    const float F = fresnel(dot(wo, h->wm));
+    const float D = distribution_.D(h->wm);
+    if (h->reflection) return SampledSpectrum<N>(D * distribution_.G(wo, wi) * F / std::abs(4 * wi.z * wo.z));
+    if (thin_) {
+      const Vec3f mirrored(wi.x, wi.y, -wi.z);
+      return tint_ * (transmission_ * D * distribution_.G(wo, mirrored) * (1 - F) / std::abs(4 * wi.z * wo.z));
+    }
+    const float denom = sqr(dot(wi, h->wm) + dot(wo, h->wm) / h->eta_p) * wi.z * wo.z;
+    const float ft = D * distribution_.G(wo, wi) * (1 - F) * std::abs(dot(wi, h->wm) * dot(wo, h->wm) / denom);
+    return tint_ * (transmission_ * ft / sqr(h->eta_p));
+  }
+
+  // E(μ_o) of the white lossless lobes on wo's side (see the header).
+  float single_scattering_albedo(float mu) const {
+    const SpecularAlbedo& t = SpecularAlbedo::table();
+    if (thin_) return t.white(std::abs(mu), distribution_.alpha());
+    return t.interface(std::abs(mu), distribution_.alpha(), mu > 0 ? eta_ : 1 / eta_);
+  }
+
   std::optional<BsdfSample<N>> sample_smooth(const Vec3f& wo, float uc) const {
     const float R = reflectance(wo);
     const auto t = transmission(wo, R);
@@ -162,7 +180,7 @@ class DielectricBsdf {
   }
 
   TrowbridgeReitz distribution_;
-  bool smooth_;
+  bool smooth_, compensate_;
   float eta_;
   SampledSpectrum<N> tint_;
   bool thin_;

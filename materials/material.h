@@ -57,7 +57,8 @@ struct PbrMaterial {
   Rgb base_color{1, 1, 1};
   float alpha = 1;
   float metallic = 1, roughness = 1, transmission = 0;
-  float specular = 1;  // KHR_materials_specular's factor: scales the dielectric's reflectance
+  float specular = 1;               // KHR_materials_specular's factor: scales the dielectric's reflectance
+  bool energy_compensation = true;  // multiple scattering between microfacets added back (Turquin 2019)
   Dielectric dielectric;
   std::optional<MeasuredMetal> metal;                 // replaces the base-colour metal when set
   std::optional<Texture> base_color_texture;          // sRGB; RGB × base_color, A × alpha
@@ -152,17 +153,18 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
     }
     n /= n_front, k /= n_front;
   }
-  const ConductorBsdf<N> metal(alpha, n, k);
+  const bool ms = material.energy_compensation;
+  const ConductorBsdf<N> metal(alpha, n, k, ms);
   if (p.metallic >= 1) return metal;
 
   if constexpr (Dispersion)
     if (disperses(m, front)) lambda.terminate_secondary();
   const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
-  const DielectricBsdf<N> dielectric(alpha, eta, color, p.thin_walled, p.transmission, material.specular);
+  const DielectricBsdf<N> dielectric(alpha, eta, color, p.thin_walled, p.transmission, material.specular, ms);
   if (p.metallic <= 0 && p.transmission >= 1) return dielectric;
   if (p.metallic <= 0 && p.transmission <= 0 && material.specular <= 0)
     return DiffuseBsdf<N>(color);  // no specular layer
-  return PbrBsdf<N>(p.metallic, metal, dielectric, p.transmission, color, alpha, eta, material.specular);
+  return PbrBsdf<N>(p.metallic, metal, dielectric, p.transmission, color, alpha, eta, material.specular, ms);
 }
 
 }  // namespace prism

@@ -19,6 +19,7 @@ class TrowbridgeReitz {
   // Below this α the lobe is rendered as the smooth (delta) interface it converges to.
   static constexpr float kSmoothAlpha = 1e-3f;
   static bool effectively_smooth(float alpha) { return alpha < kSmoothAlpha; }
+  float alpha() const { return alpha_; }
 
   // tan²θ from the components, not from 1 − cos²θ, which cancels to nothing near the normal
   // where the narrowest lobes live.

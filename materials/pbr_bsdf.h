@@ -22,9 +22,9 @@ namespace prism {
 template <int N>
 class PbrBsdf {
  public:
-  // alpha, eta and specular must be those of `dielectric` (they pick its albedo E).
+  // alpha, eta, specular and compensated must be those of `dielectric` (they pick its albedo E).
   PbrBsdf(float metallic, const ConductorBsdf<N>& metal, const DielectricBsdf<N>& dielectric, float transmission,
-          const SampledSpectrum<N>& albedo, float alpha, float eta, float specular)
+          const SampledSpectrum<N>& albedo, float alpha, float eta, float specular, bool compensated)
       : metallic_(metallic),
         transmission_(transmission),
         metal_(metal),
@@ -33,7 +33,8 @@ class PbrBsdf {
         alpha_(alpha),
         eta_(eta),
         specular_(specular),
-        e_avg_(specular * SpecularAlbedo::table().average(alpha, eta)) {}
+        compensated_(compensated),
+        e_avg_(specular * SpecularAlbedo::table().average(alpha, eta, compensated)) {}
 
   bool is_specular() const {
     return (metallic_ == 0 || metal_.is_specular()) && dielectric_.is_specular() && diffuse_weight() == 0;
@@ -94,7 +95,7 @@ class PbrBsdf {
 
   float diffuse_weight() const { return (1 - metallic_) * (1 - transmission_); }
 
-  float E(float mu) const { return specular_ * SpecularAlbedo::table().E(std::abs(mu), alpha_, eta_); }
+  float E(float mu) const { return specular_ * SpecularAlbedo::table().E(std::abs(mu), alpha_, eta_, compensated_); }
   float coupling(const Vec3f& wo, const Vec3f& wi) const {
     return e_avg_ < 1 ? (1 - E(wo.z)) * (1 - E(wi.z)) / (1 - e_avg_) : 0.f;
   }
@@ -129,7 +130,9 @@ class PbrBsdf {
   ConductorBsdf<N> metal_;
   DielectricBsdf<N> dielectric_;
   SampledSpectrum<N> albedo_;
-  float alpha_, eta_, specular_, e_avg_;
+  float alpha_, eta_, specular_;
+  bool compensated_;
+  float e_avg_;
 };
 
 }  // namespace prism

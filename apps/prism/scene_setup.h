@@ -14,10 +14,11 @@ struct SceneArgs {
   std::string scene, env, env_map;
   float env_rotate = 0, env_scale = 1;
   int width = 0, height = 0, camera = -1;
+  bool energy_compensation = true;  // off: --no-energy-compensation (single-scattering microfacets)
 };
 
 // The scene file (positional), --env / --env-map / --env-rotate / --env-scale, --width,
-// --height and --camera.
+// --height, --camera and --no-energy-compensation.
 void add_scene_options(CLI::App* cmd, SceneArgs& args);
 
 // --spp, --seed, --threads, --max-depth, --integrator, --wavelengths, --sampler, --light-sampling.
