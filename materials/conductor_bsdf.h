@@ -23,9 +23,10 @@ template <int N>
 class ConductorBsdf {
  public:
   // n, k: the metal's complex index relative to the surrounding medium, per lane.
-  ConductorBsdf(float alpha, const SampledSpectrum<N>& n, const SampledSpectrum<N>& k, bool compensate = true)
-      : distribution_(alpha),
-        smooth_(TrowbridgeReitz::effectively_smooth(alpha)),
+  ConductorBsdf(const TrowbridgeReitz& distribution, const SampledSpectrum<N>& n, const SampledSpectrum<N>& k,
+                bool compensate = true)
+      : distribution_(distribution),
+        smooth_(distribution.effectively_smooth()),
         compensate_(compensate && !smooth_),
         n_(n),
         k_(k) {}

@@ -38,10 +38,10 @@ class DielectricBsdf {
  public:
   // eta = n_back / n_front (the index behind the shading normal over the one in front), one
   // value for all lanes: a λ-dependent index terminates the secondary wavelengths first.
-  DielectricBsdf(float alpha, float eta, const SampledSpectrum<N>& tint, bool thin, float transmission = 1.f,
-                 float specular = 1.f, bool compensate = true)
-      : distribution_(alpha),
-        smooth_(TrowbridgeReitz::effectively_smooth(alpha) || eta == 1),
+  DielectricBsdf(const TrowbridgeReitz& distribution, float eta, const SampledSpectrum<N>& tint, bool thin,
+                 float transmission = 1.f, float specular = 1.f, bool compensate = true)
+      : distribution_(distribution),
+        smooth_(distribution.effectively_smooth() || eta == 1),
         compensate_(compensate && !smooth_),
         eta_(eta),
         tint_(tint),

@@ -48,6 +48,7 @@ struct SurfaceInputs {
   Rgb base_color;
   float alpha, metallic, roughness, transmission;
   bool thin_walled;
+  float anisotropy = 0;  // KHR_materials_anisotropy's strength × texture B
 };
 
 // glTF's metallic–roughness material, interpreted physically (see pbr_bsdf.h and the README):
@@ -65,8 +66,17 @@ struct PbrMaterial {
   std::optional<Texture> metallic_roughness_texture;  // linear; B × metallic, G × roughness
   std::optional<Texture> transmission_texture;        // linear; R × transmission
   std::optional<Texture> thickness_texture;           // linear; G = 0 marks a thin wall
+  // KHR_materials_anisotropy: the roughness along the direction of anisotropy rises to
+  // mix(α, 1, strength²) (α across it). The direction is the mesh tangent turned by `rotation`
+  // (radians, towards the bitangent), or the texture's RG direction in tangent space turned so;
+  // the texture's B multiplies the strength. See anisotropy_direction() and World::interaction.
+  float anisotropy_strength = 0, anisotropy_rotation = 0;
+  std::optional<Texture> anisotropy_texture;  // linear; RG direction in [−1, 1], B strength
 
   SurfaceInputs inputs(const SurfacePoint& at) const;
+  bool anisotropic() const { return anisotropy_strength > 0; }
+  // The direction of anisotropy in tangent space (x along the tangent, y the bitangent), unit.
+  Vec2f anisotropy_direction(const SurfacePoint& at) const;
 
   static PbrMaterial glass(Dielectric d, float roughness = 0);
   static PbrMaterial metal_of(MeasuredMetal m, float roughness = 0);
@@ -133,6 +143,8 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
   const PbrMaterial& material = std::get<PbrMaterial>(m.kind);
   const SurfaceInputs p = material.inputs(at);
   const float alpha = sqr(p.roughness);
+  // Local x is the direction of anisotropy (the shading frame follows it): α_x = mix(α, 1, s²).
+  const TrowbridgeReitz distribution(p.anisotropy > 0 ? lerp(sqr(p.anisotropy), alpha, 1.f) : alpha, alpha);
   SampledSpectrum<N> n_front(1.f), color;  // the front medium's index; the base colour
   const RgbAlbedoSpectrum base(p.base_color);
   for (int i = 0; i < N; ++i) {
@@ -154,17 +166,18 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
     n /= n_front, k /= n_front;
   }
   const bool ms = material.energy_compensation;
-  const ConductorBsdf<N> metal(alpha, n, k, ms);
+  const ConductorBsdf<N> metal(distribution, n, k, ms);
   if (p.metallic >= 1) return metal;
 
   if constexpr (Dispersion)
     if (disperses(m, front)) lambda.terminate_secondary();
   const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
-  const DielectricBsdf<N> dielectric(alpha, eta, color, p.thin_walled, p.transmission, material.specular, ms);
+  const DielectricBsdf<N> dielectric(distribution, eta, color, p.thin_walled, p.transmission, material.specular, ms);
   if (p.metallic <= 0 && p.transmission >= 1) return dielectric;
   if (p.metallic <= 0 && p.transmission <= 0 && material.specular <= 0)
     return DiffuseBsdf<N>(color);  // no specular layer
-  return PbrBsdf<N>(p.metallic, metal, dielectric, p.transmission, color, alpha, eta, material.specular, ms);
+  return PbrBsdf<N>(p.metallic, metal, dielectric, p.transmission, color, distribution.alpha(), eta, material.specular,
+                    ms);
 }
 
 }  // namespace prism

@@ -2,7 +2,7 @@
 // Directional albedos of the GGX lobes, E(μ) = ∫ f(wo, wi) |cos θ_i| dω_i with cos θ_o = μ
 // (transmission counted as energy), computed by the project and tabulated:
 //   white(μ, α)        reflection with F = 1: what a lossless rough conductor keeps of the light
-//                      after one scattering (Kulla & Conty 2017: E_avg(α = 1) ≈ 0.41... see README);
+//                      after one scattering (its E_avg is 0.41 at α = 1: the rest is multiple scattering);
 //   interface(μ, α, η) reflection + transmission of a lossless dielectric interface, η ∈ [1/3, 3]
 //                      (both sides of an interface of index up to 3);
 //   E(μ, α, η)         the reflection alone with the exact Fresnel (η ≥ 1), optionally

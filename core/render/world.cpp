@@ -166,18 +166,33 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
     if (len > 0 && std::isfinite(len)) si.ns = face_forward(ns / len, si.n);
   }
   const Material& material = *si.material;
-  if (material.normal_texture && !m.tangents.empty()) {
-    // Tangent-space normal map (glTF §3.9.3): n = normalize(T x + B y + N z), B = sign · N × T.
+  const auto* pbr = std::get_if<PbrMaterial>(&material.kind);
+  const bool anisotropic = pbr && pbr->anisotropic();
+  if ((material.normal_texture || anisotropic) && !m.tangents.empty()) {
+    // The tangent frame (glTF §3.9.3): T, and B = sign · N × T, both ⊥ the shading normal.
     const auto t4 = interpolate(m.tangents, m, hit.prim, b);
     const Vec3f t_world = apply(inst.linear, Vec3f(t4[0], t4[1], t4[2]));
-    const Vec3f t = t_world - si.ns * dot(si.ns, t_world);
-    const auto c = material.normal_texture->lookup(si.at.uv[material.normal_texture->texcoord], false);
-    const Vec3f local((2 * c[0] - 1) * material.normal_scale, (2 * c[1] - 1) * material.normal_scale, 2 * c[2] - 1);
-    if (length_squared(t) > 0 && length_squared(local) > 0) {
-      const Vec3f tn = normalize(t);
-      const Vec3f bn = cross(si.ns, tn) * ((t4[3] < 0) != inst.mirrored ? -1.f : 1.f);
-      const Vec3f mapped = tn * local.x + bn * local.y + si.ns * local.z;
-      if (length_squared(mapped) > 0 && is_finite(mapped)) si.ns = face_forward(normalize(mapped), si.n);
+    const float sign = (t4[3] < 0) != inst.mirrored ? -1.f : 1.f;
+    if (material.normal_texture) {
+      // Tangent-space normal map: n = normalize(T x + B y + N z).
+      const Vec3f t = t_world - si.ns * dot(si.ns, t_world);
+      const auto c = material.normal_texture->lookup(si.at.uv[material.normal_texture->texcoord], false);
+      const Vec3f local((2 * c[0] - 1) * material.normal_scale, (2 * c[1] - 1) * material.normal_scale, 2 * c[2] - 1);
+      if (length_squared(t) > 0 && length_squared(local) > 0) {
+        const Vec3f tn = normalize(t);
+        const Vec3f mapped = tn * local.x + cross(si.ns, tn) * sign * local.y + si.ns * local.z;
+        if (length_squared(mapped) > 0 && is_finite(mapped)) si.ns = face_forward(normalize(mapped), si.n);
+      }
+    }
+    if (anisotropic) {
+      // KHR_materials_anisotropy: the direction T d.x + B d.y, in the plane of the (mapped) normal.
+      const Vec3f t = t_world - si.ns * dot(si.ns, t_world);
+      if (length_squared(t) > 0) {
+        const Vec3f tn = normalize(t);
+        const Vec2f d = pbr->anisotropy_direction(si.at);
+        const Vec3f a = tn * d.x + cross(si.ns, tn) * sign * d.y;
+        if (length_squared(a) > 0 && is_finite(a)) si.tangent = normalize(a);
+      }
     }
   }
   return si;

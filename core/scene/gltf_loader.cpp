@@ -19,6 +19,7 @@ const std::set<std::string> kSupportedExtensions = {
     "KHR_materials_volume",
     "KHR_materials_dispersion",
     "KHR_materials_specular",
+    "KHR_materials_anisotropy",
     "KHR_texture_transform",
     "KHR_mesh_quantization",
 };

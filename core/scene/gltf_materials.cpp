@@ -28,6 +28,7 @@ Material GltfLoader::convert_material(const tinygltf::Material& m, int index) {
   surface_model.transmission_texture =
       extension_texture(m, "KHR_materials_transmission", "transmissionTexture", context);
   surface_model.thickness_texture = extension_texture(m, "KHR_materials_volume", "thicknessTexture", context);
+  surface_model.anisotropy_texture = extension_texture(m, "KHR_materials_anisotropy", "anisotropyTexture", context);
   out.kind = std::move(surface_model);
   out.normal_texture = texture(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions, context);
   out.normal_scale = float(m.normalTexture.scale);
@@ -139,6 +140,8 @@ PbrMaterial GltfLoader::surface(const tinygltf::Material& m, Rgb base, const std
   p.roughness = std::clamp(float(m.pbrMetallicRoughness.roughnessFactor), 0.f, 1.f);
   p.transmission = float(number("KHR_materials_transmission", "transmissionFactor", 0, 0, 1));
   p.specular = float(number("KHR_materials_specular", "specularFactor", 1, 0, 1));
+  p.anisotropy_strength = float(number("KHR_materials_anisotropy", "anisotropyStrength", 0, 0, 1));
+  p.anisotropy_rotation = float(number("KHR_materials_anisotropy", "anisotropyRotation", 0, -1e6, 1e6));
   if (const auto it = m.extensions.find("KHR_materials_specular");
       it != m.extensions.end() && it->second.Has("specularColorFactor"))
     warn_once("KHR_materials_specular's specularColorFactor is not supported; using the factor only");
