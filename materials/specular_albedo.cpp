@@ -63,9 +63,9 @@ Lerp locate(float v, float hi, int n) {
 Lerp locate_eta(float eta) { return locate((eta - 1) / (eta + 1) + kMaxX, 2 * kMaxX, SpecularAlbedo::kEta); }
 
 float alpha_of(int a) { return float(std::pow(float(a) / (SpecularAlbedo::kAlpha - 1), 3)); }
-// Nodes uniform in ∛μ, dense where E changes fastest (grazing at low roughness); μ = 0 itself is never met, a
+// Nodes uniform in √μ, dense where E changes fastest (grazing); μ = 0 itself is never met, a
 // grazing neighbour stands in.
-float mu_of(int m) { return std::max(float(std::pow(float(m) / (SpecularAlbedo::kMu - 1), 3)), 1e-5f); }
+float mu_of(int m) { return std::max(sqr(float(m) / (SpecularAlbedo::kMu - 1)), 1e-4f); }
 
 // E_avg of exactly the function E() returns (`exact` when smooth, the interpolated grid
 // otherwise), so that a coupled diffuse lobe's albedo is exactly (1 − E(μ_o)) ρ.
@@ -83,12 +83,16 @@ void fill_averages(std::vector<float>& avg, const std::function<float(float mu, 
 
 }  // namespace
 
-float SpecularAlbedo::Grid::at(float mu, float alpha) const {
-  const Lerp a = locate(std::cbrt(alpha), 1, kAlpha), m = locate(std::cbrt(std::max(mu, 0.f)), 1, kMu);
+SpecularAlbedo::Point SpecularAlbedo::point(float mu, float alpha) {
+  const Lerp a = locate(std::cbrt(alpha), 1, kAlpha), m = locate(std::sqrt(std::max(mu, 0.f)), 1, kMu);
+  return {a.i, m.i, a.t, m.t};
+}
+
+float SpecularAlbedo::Grid::at(const Point& p) const {
   float r = 0;
   for (int k = 0; k < 4; ++k) {
     const int da = k & 1, dm = k >> 1;
-    r += (da ? a.t : 1 - a.t) * (dm ? m.t : 1 - m.t) * e[(a.i + da) * kMu + (m.i + dm)];
+    r += (da ? p.ta : 1 - p.ta) * (dm ? p.tm : 1 - p.tm) * e[(p.a + da) * kMu + (p.m + dm)];
   }
   return r;
 }
@@ -117,12 +121,12 @@ const SpecularAlbedo::Slice& SpecularAlbedo::slice(int h) const {
       }
     const auto smooth = [](float alpha) { return TrowbridgeReitz::effectively_smooth(alpha); };
     fill_averages(s.r.avg, [&](float mu, float alpha) {
-      return smooth(alpha) ? fresnel_dielectric(mu, eta) : s.r.at(mu, alpha);
+      return smooth(alpha) ? fresnel_dielectric(mu, eta) : s.r.at(point(mu, alpha));
     });
     fill_averages(s.r_compensated.avg, [&](float mu, float alpha) {
-      return smooth(alpha) ? fresnel_dielectric(mu, eta) : s.r_compensated.at(mu, alpha);
+      return smooth(alpha) ? fresnel_dielectric(mu, eta) : s.r_compensated.at(point(mu, alpha));
     });
-    fill_averages(s.rt.avg, [&](float mu, float alpha) { return smooth(alpha) ? 1.f : s.rt.at(mu, alpha); });
+    fill_averages(s.rt.avg, [&](float mu, float alpha) { return smooth(alpha) ? 1.f : s.rt.at(point(mu, alpha)); });
   });
   return slices_[h];
 }
@@ -133,7 +137,7 @@ const SpecularAlbedo::Grid& SpecularAlbedo::white_grid() const {
       for (int m = 0; m < kMu; ++m)
         white_.e[size_t(a) * kMu + m] = directional_albedos(mu_of(m), alpha_of(a), 1.5f).white;
     fill_averages(white_.avg, [&](float mu, float alpha) {
-      return TrowbridgeReitz::effectively_smooth(alpha) ? 1.f : white_.at(mu, alpha);
+      return TrowbridgeReitz::effectively_smooth(alpha) ? 1.f : white_.at(point(mu, alpha));
     });
   });
   return white_;
@@ -142,8 +146,9 @@ const SpecularAlbedo::Grid& SpecularAlbedo::white_grid() const {
 float SpecularAlbedo::E(float mu, float alpha, float eta, bool compensated) const {
   if (TrowbridgeReitz::effectively_smooth(alpha)) return fresnel_dielectric(mu, eta);
   const Lerp h = locate_eta(eta);
+  const Point p = point(mu, alpha);
   const auto grid = [&](int i) -> const Grid& { return compensated ? slice(i).r_compensated : slice(i).r; };
-  return (1 - h.t) * grid(h.i).at(mu, alpha) + h.t * grid(h.i + 1).at(mu, alpha);
+  return (1 - h.t) * grid(h.i).at(p) + h.t * grid(h.i + 1).at(p);
 }
 
 float SpecularAlbedo::average(float alpha, float eta, bool compensated) const {
@@ -155,11 +160,12 @@ float SpecularAlbedo::average(float alpha, float eta, bool compensated) const {
 float SpecularAlbedo::interface(float mu, float alpha, float eta) const {
   if (TrowbridgeReitz::effectively_smooth(alpha)) return 1.f;
   const Lerp h = locate_eta(eta);
-  return (1 - h.t) * slice(h.i).rt.at(mu, alpha) + h.t * slice(h.i + 1).rt.at(mu, alpha);
+  const Point p = point(mu, alpha);
+  return (1 - h.t) * slice(h.i).rt.at(p) + h.t * slice(h.i + 1).rt.at(p);
 }
 
 float SpecularAlbedo::white(float mu, float alpha) const {
-  return TrowbridgeReitz::effectively_smooth(alpha) ? 1.f : white_grid().at(mu, alpha);
+  return TrowbridgeReitz::effectively_smooth(alpha) ? 1.f : white_grid().at(point(mu, alpha));
 }
 
 float SpecularAlbedo::white_average(float alpha) const { return white_grid().average(alpha); }

@@ -12,7 +12,7 @@
 //                      Based Shading at Imageworks"): f_diffuse = ρ/π · (1 − E(μ_o))(1 − E(μ_i))/(1 − E_avg).
 // white() and interface() are the single-scattering albedos that the multiple-scattering
 // compensation divides by (Turquin 2019; see conductor_bsdf.h, dielectric_bsdf.h).
-// Tabulated over ∛μ, ∛α ∈ [0, 1] and x = (η − 1)/(η + 1) ∈ [−1/2, 1/2], axes on
+// Tabulated over √μ, ∛α ∈ [0, 1] and x = (η − 1)/(η + 1) ∈ [−1/2, 1/2], axes on
 // which E varies smoothly enough for linear interpolation; each table (the white one, or one η
 // slice) is computed by stratified sampling the first time a material needs it (tens of
 // milliseconds), deterministically, so a scene pays only for the indices it uses.
@@ -36,11 +36,17 @@ class SpecularAlbedo {
 
  private:
   SpecularAlbedo();
+  // Where (μ, α) falls on the grids' axes (∛α, √μ): cell and weights, shared by the grids read.
+  struct Point {
+    int a, m;
+    float ta, tm;
+  };
+  static Point point(float mu, float alpha);
   // One table of E over (α, μ) and its averages over μ, per α.
   struct Grid {
     std::vector<float> e = std::vector<float>(size_t(kAlpha) * kMu), avg = std::vector<float>(kAlpha);
-    float at(float mu, float alpha) const;  // bilinear in (∛α, ∛μ)
-    float average(float alpha) const;       // linear in ∛α
+    float at(const Point& p) const;    // bilinear
+    float average(float alpha) const;  // linear in ∛α
   };
   // An η slice: reflection, reflection compensated, reflection + transmission.
   struct Slice {
