@@ -157,7 +157,7 @@ bool Accel::trace(const Ray& ray, Closest& closest) const {
       return test_blocks<AnyHit>(tree, first, count, p.instance, wr, closest);
     };
     if (brute_force_) return mesh_leaf(0, uint32_t(tree.blocks.size()));
-    return tree.bvh.traverse<AnyHit>(BvhRay(object_ray), closest.t, tree.blocks.data(), mesh_leaf,
+    return tree.bvh.traverse<AnyHit>(object_ray, closest.t, tree.blocks.data(), mesh_leaf,
                                      [](uint32_t) { return false; });  // mesh trees have no solo leaves
   };
   if (brute_force_) {
@@ -169,7 +169,7 @@ bool Accel::trace(const Ray& ray, Closest& closest) const {
     }
     return found;
   }
-  return world_.bvh.traverse<AnyHit>(BvhRay(ray), closest.t, world_.blocks.data(), leaf, enter);
+  return world_.bvh.traverse<AnyHit>(ray, closest.t, world_.blocks.data(), leaf, enter);
 }
 
 bool Accel::intersect(const Ray& ray, AccelHit& hit) const {

@@ -9,7 +9,6 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <span>
 #include <utility>
 #include <vector>
@@ -64,9 +63,9 @@ struct BvhRay {
     constexpr float kDown = 1.f - 2.f * gamma(5), kUp = 1.f + 2.f * gamma(5);
     for (int a = 0; a < 3; ++a) {
       const float inv = 1.f / ray.d[a];
-      o[a] = simd::f8{} + ray.o[a];
-      inv_near[a] = simd::f8{} + inv * kDown;
-      inv_far[a] = simd::f8{} + inv * kUp;
+      o[a] = simd::broadcast(ray.o[a]);
+      inv_near[a] = simd::broadcast(inv * kDown);
+      inv_far[a] = simd::broadcast(inv * kUp);
       near[a] = (std::signbit(inv) ? a + 3 : a) * sizeof(BvhNode::planes[0]);
       far[a] = (std::signbit(inv) ? a : a + 3) * sizeof(BvhNode::planes[0]);
     }
@@ -92,7 +91,7 @@ class Bvh {
   // and returns whether it hit. Boxes entered beyond tmax are skipped; with AnyHit, returns at
   // the first hit. `blocks` (the leaves' blocks) is only prefetched.
   template <bool AnyHit, typename Block, typename Leaf, typename Solo>
-  bool traverse(const BvhRay& ray, float& tmax, const Block* blocks, Leaf&& leaf, Solo&& solo) const;
+  bool traverse(const Ray& ray, float& tmax, const Block* blocks, Leaf&& leaf, Solo&& solo) const;
 
  private:
   friend class BvhBuilder;
@@ -106,10 +105,10 @@ class Bvh {
 };
 
 template <bool AnyHit, typename Block, typename Leaf, typename Solo>
-bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&& leaf, Solo&& solo) const {
+bool Bvh::traverse(const Ray& r, float& tmax, const Block* blocks, Leaf&& leaf, Solo&& solo) const {
   using simd::f8;
   if (root_ == kNoRoot) return false;
-  const BvhRay ray = ray_in;  // a local copy the compiler can keep in registers
+  const BvhRay ray(r);  // built here, so the compiler keeps it in registers
   const auto prefetch = [](const void* p, size_t bytes) {
     for (size_t offset = 0; offset < bytes; offset += 64) __builtin_prefetch(static_cast<const char*>(p) + offset);
     __builtin_prefetch(static_cast<const char*>(p) + bytes - 1);
@@ -133,7 +132,7 @@ bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&
       const BvhNode& node = nodes_[ref];
       const char* planes = reinterpret_cast<const char*>(node.planes);
       const auto slab = [&](size_t offset, int a, const f8& inv) {
-        return (simd::load<f8>(reinterpret_cast<const float*>(planes + offset)) - ray.o[a]) * inv;
+        return (simd::load(reinterpret_cast<const float*>(planes + offset)) - ray.o[a]) * inv;
       };
       const f8 t_enter =
           simd::max_ignore_nan(slab(ray.near[0], 0, ray.inv_near[0]),
@@ -142,7 +141,7 @@ bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&
       const f8 t_leave = simd::min_ignore_nan(
           slab(ray.far[0], 0, ray.inv_far[0]),
           simd::min_ignore_nan(slab(ray.far[1], 1, ray.inv_far[1]),
-                               simd::min_ignore_nan(slab(ray.far[2], 2, ray.inv_far[2]), f8{} + tmax)));
+                               simd::min_ignore_nan(slab(ray.far[2], 2, ray.inv_far[2]), simd::broadcast(tmax))));
       uint32_t mask = simd::bits(t_enter <= t_leave);
       if (mask) {
         int i = std::countr_zero(mask);
@@ -164,7 +163,7 @@ bool Bvh::traverse(const BvhRay& ray_in, float& tmax, const Block* blocks, Leaf&
           continue;
         }
         alignas(32) float t[8];
-        std::memcpy(t, &t_enter, sizeof t);
+        simd::store(t, t_enter);
         mask &= mask - 1;
         int j = std::countr_zero(mask);
         mask &= mask - 1;

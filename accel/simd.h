@@ -3,7 +3,6 @@
 // like their scalar formulas and compile to SSE, AVX or AVX-512 code for whatever -march allows.
 
 #include <cstdint>
-#include <cstring>
 
 #if defined(__SSE__)
 #include <immintrin.h>
@@ -15,14 +14,15 @@ using f4 = float __attribute__((vector_size(16)));
 using i4 = int32_t __attribute__((vector_size(16)));
 using f8 = float __attribute__((vector_size(32)));
 using i8 = int32_t __attribute__((vector_size(32)));
-using d8 = double __attribute__((vector_size(64)));
 
-template <typename V>
-V load(const float* p) {
-  V v;
-  std::memcpy(&v, p, sizeof v);  // no alignment assumed; compiles to one (unaligned) load
-  return v;
-}
+// Eight floats from or to memory, no alignment assumed: one (unaligned) move through a type that
+// may alias float. (A memcpy made GCC 12 copy the vector through the stack once more.)
+using f8_unaligned = float __attribute__((vector_size(32), aligned(4), may_alias));
+inline f8 load(const float* p) { return *reinterpret_cast<const f8_unaligned*>(p); }
+inline void store(float* p, f8 v) { *reinterpret_cast<f8_unaligned*>(p) = v; }
+
+// x in every lane. (f8{} + x would cost an addition: 0 + x is not x when x is −0.)
+inline f8 broadcast(float x) { return f8{x, x, x, x, x, x, x, x}; }
 
 // The lane-wise minimum and maximum that ignore a NaN in their first argument: (p − o)/d is NaN
 // when a ray lies in a slab's plane, and such a slab must not limit the interval.

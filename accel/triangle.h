@@ -7,6 +7,7 @@
 // One implementation, eight triangles at a time: the BVH's leaves store triangles in blocks.
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -17,11 +18,11 @@ namespace prism {
 
 // Per-ray constants of the watertight test, computed once per traversal.
 struct WatertightRay {
-  Vec3f o;
   int kx, ky, kz;
+  float ox, oy, oz;  // the origin in the permuted axes
   float sx, sy, sz;
 
-  explicit WatertightRay(const Ray& ray) : o(ray.o) {
+  explicit WatertightRay(const Ray& ray) {
     kz = max_dimension(abs(ray.d));
     kx = kz == 2 ? 0 : kz + 1;
     ky = kx == 2 ? 0 : kx + 1;
@@ -29,6 +30,7 @@ struct WatertightRay {
     sx = ray.d[kx] / ray.d[kz];
     sy = ray.d[ky] / ray.d[kz];
     sz = 1.f / ray.d[kz];
+    ox = ray.o[kx], oy = ray.o[ky], oz = ray.o[kz];
   }
 };
 
@@ -45,7 +47,7 @@ struct alignas(32) TriangleBlock {
 
   TriangleBlock() {
     for (auto& vertex : v)
-      for (auto& axis : vertex) axis = simd::f8{} + std::numeric_limits<float>::quiet_NaN();
+      for (auto& axis : vertex) axis = simd::broadcast(std::numeric_limits<float>::quiet_NaN());
     for (uint32_t& i : id) i = 0;
   }
   void set(int lane, const Vec3f& v0, const Vec3f& v1, const Vec3f& v2, uint32_t triangle_id) {
@@ -65,10 +67,25 @@ struct BlockHits {
   TriangleHit lane(int i) const { return {t[i], u[i] * inv_det[i], v[i] * inv_det[i], w[i] * inv_det[i]}; }
 };
 
+// The edge functions of the lanes in `lanes` recomputed in double, where the products are exact:
+// for rays exactly on an edge in float (rare). Out of line, so that the common path stays small.
+[[gnu::cold, gnu::noinline]] inline void exact_edge_functions(uint32_t lanes, const simd::f8& ax, const simd::f8& ay,
+                                                              const simd::f8& bx, const simd::f8& by,
+                                                              const simd::f8& cx, const simd::f8& cy, simd::f8& u,
+                                                              simd::f8& v, simd::f8& w) {
+  const auto edge_function = [](double px, double py, double qx, double qy) { return float(px * qy - py * qx); };
+  for (; lanes; lanes &= lanes - 1) {
+    const int i = std::countr_zero(lanes);
+    u[i] = edge_function(cx[i], cy[i], bx[i], by[i]);
+    v[i] = edge_function(ax[i], ay[i], cx[i], cy[i]);
+    w[i] = edge_function(bx[i], by[i], ax[i], ay[i]);
+  }
+}
+
 inline BlockHits intersect_triangles(const WatertightRay& r, const TriangleBlock& tri, float tmax) {
-  using simd::f8, simd::i8, simd::d8;
+  using simd::f8, simd::i8;
   // Vertices relative to the origin, in the permuted axes.
-  const f8 ox = f8{} + r.o[r.kx], oy = f8{} + r.o[r.ky], oz = f8{} + r.o[r.kz];
+  const f8 ox = simd::broadcast(r.ox), oy = simd::broadcast(r.oy), oz = simd::broadcast(r.oz);
   const f8 a_x = tri.v[0][r.kx] - ox, a_y = tri.v[0][r.ky] - oy, a_z = tri.v[0][r.kz] - oz;
   const f8 b_x = tri.v[1][r.kx] - ox, b_y = tri.v[1][r.ky] - oy, b_z = tri.v[1][r.kz] - oz;
   const f8 c_x = tri.v[2][r.kx] - ox, c_y = tri.v[2][r.ky] - oy, c_z = tri.v[2][r.kz] - oz;
@@ -82,15 +99,7 @@ inline BlockHits intersect_triangles(const WatertightRay& r, const TriangleBlock
   f8 v = ax * cy - ay * cx;
   f8 w = bx * ay - by * ax;
   const i8 on_edge = (u == 0.f) | (v == 0.f) | (w == 0.f);
-  if (simd::bits(on_edge)) {  // exactly on an edge in float: decide in double
-    const auto dbl = [](f8 x) { return __builtin_convertvector(x, d8); };
-    const f8 ud = __builtin_convertvector(dbl(cx) * dbl(by) - dbl(cy) * dbl(bx), f8);
-    const f8 vd = __builtin_convertvector(dbl(ax) * dbl(cy) - dbl(ay) * dbl(cx), f8);
-    const f8 wd = __builtin_convertvector(dbl(bx) * dbl(ay) - dbl(by) * dbl(ax), f8);
-    u = on_edge ? ud : u;
-    v = on_edge ? vd : v;
-    w = on_edge ? wd : w;
-  }
+  if (const uint32_t edge = simd::bits(on_edge)) exact_edge_functions(edge, ax, ay, bx, by, cx, cy, u, v, w);
   const i8 outside = ((u < 0.f) | (v < 0.f) | (w < 0.f)) & ((u > 0.f) | (v > 0.f) | (w > 0.f));
   const f8 det = u + v + w;
 

@@ -1,11 +1,16 @@
 #pragma once
 // SampledWavelengths<N>: the wavelengths one camera path carries, with their sampling pdfs.
-// Hero wavelength sampling (Wilkie et al. 2014, "Hero Wavelength Spectral Sampling"): one
-// uniform number u picks the hero; companions use u + i/N (mod 1), so the N wavelengths are
-// stratified over the pdf's CDF.
+// Hero wavelength sampling (Wilkie et al. 2014, "Hero Wavelength Spectral Sampling"): the N
+// wavelengths sit at the CDF values (s + k)/N, k = 0..N-1, so they are stratified over the pdf;
+// u.y picks which of them is the hero (lane 0), so the hero alone is distributed as the pdf.
+// Only s = u.x sets the N values, so a sampler that stratifies u.x over a pixel's M samples
+// stratifies the pixel's M·N wavelengths (a single number u with companions u + i/N would
+// stratify only frac(N·u), which a (0,2)-sequence's top bits do not).
 
+#include <algorithm>
 #include <cmath>
 
+#include "base/vec.h"
 #include "spectral/sampled_spectrum.h"
 
 namespace prism {
@@ -48,11 +53,11 @@ enum class WavelengthSampling { visible, uniform };
 template <int N>
 class SampledWavelengths {
  public:
-  static SampledWavelengths sample(float u, WavelengthSampling mode = WavelengthSampling::visible) {
+  static SampledWavelengths sample(Vec2f u, WavelengthSampling mode = WavelengthSampling::visible) {
     SampledWavelengths w;
+    const int hero = std::min(int(u.y * N), N - 1);
     for (int i = 0; i < N; ++i) {
-      float ui = u + float(i) / N;
-      if (ui >= 1.f) ui -= 1.f;
+      const float ui = (u.x + float((hero + i) % N)) / N;
       if (mode == WavelengthSampling::visible) {
         w.lambda_[i] = sample_visible_wavelengths(ui, w.pdf_[i]);
       } else {

@@ -10,6 +10,12 @@
 #              ROUNDS    alternations of Prism and Embree per cell; best of each (default 3)
 #              REPEAT    timed passes per run (default 5)
 #              THREADS   thread counts to measure (default "1 2")
+#              KINDS     ray kinds to measure (default "primary diffuse shadow")
+#              SCENES    scene names to measure (default all three: MetalRoughSpheresNoTextures
+#                        TransmissionTest procedural)
+#              EMBREE_CONFIG  extra Embree device config, e.g. isa=avx2 for its AVX2 kernels (default none)
+# The AVX2 comparison on an AVX-512 machine: Prism built with -DPRISM_ARCH=x86-64-v3 (README) and
+#   PRISM=build-avx2/apps/prism EMBREE_CONFIG=isa=avx2 tools/bench_rays.sh
 # The machine is shared and noisy: the best of several alternations is compared, as raybench's
 # README recommends; rerun when a cell looks off.
 set -euo pipefail
@@ -21,6 +27,10 @@ out=${OUT:-$root/build/bench_rays}
 rounds=${ROUNDS:-3}
 repeat=${REPEAT:-5}
 threads=${THREADS:-1 2}
+kinds=${KINDS:-primary diffuse shadow}
+only=${SCENES:-}
+embree_config=()
+[ -n "${EMBREE_CONFIG:-}" ] && embree_config=(--embree-config "$EMBREE_CONFIG")
 
 if [ ! -x "$raybench" ]; then
   echo "bench_rays: raybench not found at $raybench; skipping (build it as its README says, or set RAYBENCH)"
@@ -50,7 +60,8 @@ for scene in "${scenes[@]}"; do
     continue
   fi
   name=$(basename "${scene%.*}")
-  for kind in primary diffuse shadow; do
+  [ -n "$only" ] && [[ " $only " != *" $name "* ]] && continue
+  for kind in $kinds; do
     rays=$out/$name.$kind.rays
     if [ ! -f "$rays" ]; then
       size=(--count 1048576)
@@ -70,7 +81,7 @@ for scene in "${scenes[@]}"; do
               "${p_hits[@]}" 2>/dev/null | tail -1) ||
           { echo "bench_rays: prism bench rays failed on $rays" >&2; exit 1; }
         e=$(nice -n 10 "$raybench" embree "$scene" "$rays" --threads "$t" --repeat "$repeat" "${mode[@]}" \
-              "${e_hits[@]}" 2>/dev/null | tail -1) ||
+              "${embree_config[@]}" "${e_hits[@]}" 2>/dev/null | tail -1) ||
           { echo "bench_rays: raybench embree failed on $rays" >&2; exit 1; }
         p_mrays=$(best "$p_mrays" "$(field mrays_best "$p")" 1)
         e_mrays=$(best "$e_mrays" "$(field mrays_best "$e")" 1)

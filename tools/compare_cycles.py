@@ -18,6 +18,7 @@ import argparse
 import copy
 import csv
 import json
+import math
 import os
 import re
 import resource
@@ -72,6 +73,19 @@ def parse_args():
                     help="nice level for both renderers (the harness's default: 10)")
     ap.add_argument("--previews", action="store_true",
                     help="also write an 8-bit sRGB preview, Prism left and Cycles right, per asset")
+    ap.add_argument("--equal-error", action="store_true",
+                    help="instead of one comparison, the time each renderer needs to reach the same error: each "
+                         "against its own reference (two independent halves, their noise subtracted) over a "
+                         "ladder of spp budgets; see tools/README.md")
+    ap.add_argument("--ladder", default="4,8,16,32,64,128,256",
+                    help="--equal-error: the spp budgets, comma-separated (default 4,8,16,32,64,128,256)")
+    ap.add_argument("--ref-spp", type=int, default=2048,
+                    help="--equal-error: spp of each renderer's reference, rendered as two halves with other seeds "
+                         "(default 2048)")
+    ap.add_argument("--reuse-references", action="store_true",
+                    help="--equal-error: keep references already in --out for the same size, depth and spp")
+    ap.add_argument("--references-only", action="store_true",
+                    help="--equal-error: render the references and stop (to split a long run into short ones)")
     ap.add_argument("--conventions", action="store_true",
                     help="instead of the assets, check the unit and bounce conventions on the harness's "
                          "point-light plane and Cornell box (64 spp, 128x128)")
@@ -79,6 +93,12 @@ def parse_args():
     if a.spp < 1 or a.width < 1 or a.height < 0 or a.threads < 1 or a.max_depth < 1 or a.camera < 0:
         ap.error("--spp, --width, --threads and --max-depth must be >= 1; --height and --camera >= 0")
     a.assets = [s for s in (x.strip() for x in a.assets.split(",")) if s]
+    try:
+        a.ladder = sorted({int(x) for x in a.ladder.split(",") if x.strip()})
+    except ValueError:
+        ap.error("--ladder takes comma-separated integers")
+    if a.equal_error and (not a.ladder or a.ladder[0] < 1 or a.ref_spp < 2):
+        ap.error("--ladder needs spp >= 1 and --ref-spp >= 2")
     return a
 
 
@@ -159,13 +179,38 @@ def write_with_camera(src, g, cam, width, height, dest_dir):
     return out
 
 
+def asset_setup(a, assets_dir, name):
+    """The asset's file, glTF, cameras, image size and environment (only for assets without lights)."""
+    src = os.path.join(assets_dir, name, "glTF", name + ".gltf")
+    with open(src) as f:
+        g = json.load(f)
+    info = inspect_gltf(g)
+    cams = info["cam_by_index"]
+    if cams and a.camera >= len(cams):
+        raise RuntimeError("--camera %d: the asset has %d camera(s)" % (a.camera, len(cams)))
+    aspect = (camera_aspect(g, cams[a.camera]) if cams else None) or DEFAULT_ASPECT
+    has_light = bool(info["punctual"] or info["emissive"])
+    return dict(src=src, g=g, info=info, cams=cams, width=a.width, height=a.height or max(1, round(a.width / aspect)),
+                has_light=has_light, env=None if has_light or a.env == "none" else a.env)
+
+
+def prism_scene(a, s, auto, work):
+    """The file and camera index Prism renders: the asset when it has a camera, else a copy of it with the
+    camera the harness framed (`auto`, from Cycles' log)."""
+    if s["cams"]:
+        return s["src"], s["info"]["cam_dfs"].index(s["cams"][a.camera])
+    if auto is None:
+        raise RuntimeError("the harness printed no auto_camera_gltf line; see the Cycles log in %s" % work)
+    return write_with_camera(s["src"], s["g"], auto, s["width"], s["height"], os.path.join(work, "scene")), 0
+
+
 # --------------------------------------------------------------------------- renderers
 def run_cycles(a, harness, gltf, exr, width, height, cam_index, env, spp=None, max_depth=None,
-               lighting_mode="COMPAT"):
+               lighting_mode="COMPAT", seed=None):
     """Cycles through the harness. `max_depth` is in Prism's convention; Cycles gets max_depth - 1."""
     cmd = [os.path.join(harness, "render_gltf.sh"), "--in", gltf, "--out", exr, "--spp", str(spp or a.spp),
            "--width", str(width), "--height", str(height), "--max-bounces", str((max_depth or a.max_depth) - 1),
-           "--seed", str(a.seed), "--threads", str(a.threads), "--camera-index", str(cam_index),
+           "--seed", str(a.seed if seed is None else seed), "--threads", str(a.threads), "--camera-index", str(cam_index),
            "--lighting-mode", lighting_mode, "--filter", "box", "--filter-width", "1",
            "--timings-json", exr + ".json"]
     if env:
@@ -196,10 +241,10 @@ def run_cycles(a, harness, gltf, exr, width, height, cam_index, env, spp=None, m
     return rec, auto, notes
 
 
-def run_prism(a, gltf, exr, width, height, cam_index, env, spp=None, max_depth=None):
+def run_prism(a, gltf, exr, width, height, cam_index, env, spp=None, max_depth=None, seed=None):
     cmd = ["nice", "-n", str(a.nice), a.prism, "render", gltf, "-o", exr, "--spp", str(spp or a.spp),
            "--width", str(width), "--height", str(height), "--max-depth", str(max_depth or a.max_depth),
-           "--seed", str(a.seed), "--threads", str(a.threads), "--camera", str(cam_index)]
+           "--seed", str(a.seed if seed is None else seed), "--threads", str(a.threads), "--camera", str(cam_index)]
     if env:
         cmd += ["--env", env]
     ru0 = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -336,6 +381,169 @@ def check_conventions(a, harness, exrstats):
     return 0 if ok else 1
 
 
+# --------------------------------------------------------------------------- equal error
+REF_SEEDS = (1001, 1002)  # the references' two halves; the ladder uses --seed
+
+
+def debiased_rel_rmse(x, h1, h2):
+    """RMSE of x against the reference (h1 + h2) / 2, relative to its mean, with the reference's own noise
+    subtracted: E|x - ref|^2 = MSE(x) + Var(ref), and Var(ref) = E|h1 - h2|^2 / 4 for independent halves."""
+    ref = (h1 + h2) / 2
+    mse = float(((x - ref) ** 2).mean() - ((h1 - h2) ** 2).mean() / 4)
+    return math.sqrt(max(mse, 0.0)) / float(ref.mean())
+
+
+def reference_rel_rmse(h1, h2):
+    """The reference's own relative RMSE (its noise; the mean of two halves)."""
+    return math.sqrt(float(((h1 - h2) ** 2).mean()) / 4) / float(((h1 + h2) / 2).mean())
+
+
+def time_at_error(rungs, target):
+    """Seconds to reach relative RMSE `target`, by linear interpolation of log(seconds) against log(error)
+    between the two rungs that bracket it (or extrapolation from the two nearest); and whether it extrapolated."""
+    pts = [(math.log(r["error"]), math.log(r["seconds"])) for r in rungs if r["error"] > 0 and r["seconds"] > 0]
+    if len(pts) < 2:
+        return float("nan"), True
+    lt = math.log(target)
+    for (e0, t0), (e1, t1) in zip(pts, pts[1:]):
+        if min(e0, e1) <= lt <= max(e0, e1) and e0 != e1:
+            return math.exp(t0 + (t1 - t0) * (lt - e0) / (e1 - e0)), False
+    (e0, t0), (e1, t1) = (pts[-2], pts[-1]) if lt < pts[-1][0] else (pts[0], pts[1])
+    if e0 == e1:
+        return float("nan"), True
+    return math.exp(t0 + (t1 - t0) * (lt - e0) / (e1 - e0)), True
+
+
+def render_both(a, harness, s, work, stem, spp, seed, auto):
+    """Cycles then Prism at spp with this seed: (cycles record, prism record, Cycles' auto camera)."""
+    cyc_exr, prism_exr = os.path.join(work, "cycles_" + stem + ".exr"), os.path.join(work, "prism_" + stem + ".exr")
+    cyc, cyc_auto, _ = run_cycles(a, harness, s["src"], cyc_exr, s["width"], s["height"], a.camera, s["env"], spp=spp,
+                                  seed=seed)
+    auto = auto or cyc_auto
+    prism_in, prism_cam = prism_scene(a, s, auto, work)
+    prism, _ = run_prism(a, prism_in, prism_exr, s["width"], s["height"], prism_cam, s["env"], spp=spp, seed=seed)
+    return cyc, prism, auto
+
+
+def equal_error(a, harness, exrstats, assets_dir):
+    import numpy as np
+
+    def image(path):
+        rgb, header = load_rgb(exrstats, path)
+        return np.where(np.isfinite(rgb), rgb, 0.0), header
+
+    half = a.ref_spp // 2
+    print("Equal-error time, Prism vs Cycles (Blender 3.4): %d threads each, Prism --max-depth %d = Cycles "
+          "--max-bounces %d, references of 2 x %d spp (seeds %d, %d), ladder %s spp (seed %d). Seconds: path "
+          "tracing only (Prism's prism.seconds, Cycles' cycles_pathtrace_s)."
+          % (a.threads, a.max_depth, a.max_depth - 1, half, *REF_SEEDS, ",".join(map(str, a.ladder)), a.seed))
+    results, failed = [], []
+    for name in a.assets:
+        work = os.path.join(a.out, name)
+        os.makedirs(work, exist_ok=True)
+        try:
+            s = asset_setup(a, assets_dir, name)
+            print("\n== %s  %dx%d, %s" % (name, s["width"], s["height"],
+                                          "env " + s["env"] if s["env"] else "its own lights"), flush=True)
+            camera_file = os.path.join(work, "auto_camera.json")
+            auto = None
+            if os.path.isfile(camera_file):
+                with open(camera_file) as f:
+                    auto = json.load(f)
+            refs = {}
+            for k, seed in enumerate(REF_SEEDS):
+                stem = "ref%d_%dspp_%dx%d_d%d" % (k, half, s["width"], s["height"], a.max_depth)
+                paths = [os.path.join(work, r + "_" + stem + ".exr") for r in ("cycles", "prism")]
+                if not (a.reuse_references and all(map(os.path.isfile, paths)) and (auto or s["cams"])):
+                    t0 = time.perf_counter()
+                    _, _, auto = render_both(a, harness, s, work, stem, half, seed, auto)
+                    print("  reference half %d: %d spp each, %.0f s" % (k + 1, half, time.perf_counter() - t0),
+                          flush=True)
+                    if auto:
+                        with open(camera_file, "w") as f:
+                            json.dump(auto, f)
+                for r, path in zip(("cycles", "prism"), paths):
+                    refs.setdefault(r, []).append(image(path)[0])
+            for r in ("cycles", "prism"):
+                print("  %s reference: rel RMSE of its own noise %.5f" % (r, reference_rel_rmse(*refs[r])))
+            if a.references_only:
+                continue
+            rungs = {"cycles": [], "prism": []}
+            print("  %6s  %10s %10s  %10s %10s" % ("spp", "Cycles s", "rel RMSE", "Prism s", "rel RMSE"))
+            for spp in a.ladder:
+                stem = "%dspp" % spp
+                cyc, prism, auto = render_both(a, harness, s, work, stem, spp, a.seed, auto)
+                for r, rec in (("cycles", cyc), ("prism", prism)):
+                    img, header = image(os.path.join(work, "%s_%s.exr" % (r, stem)))
+                    seconds = (float(rec.get("cycles_pathtrace_s", float("nan"))) if r == "cycles"
+                               else float(header.get("prism.seconds", float("nan"))))
+                    rungs[r].append(dict(spp=spp, seconds=seconds, error=debiased_rel_rmse(img, *refs[r])))
+                c, p = rungs["cycles"][-1], rungs["prism"][-1]
+                print("  %6d  %10.3f %10.5f  %10.3f %10.5f" % (spp, c["seconds"], c["error"], p["seconds"], p["error"]),
+                      flush=True)
+            top_c, top_p = rungs["cycles"][-1], rungs["prism"][-1]
+            target = top_c["error"]
+            t_prism, extrapolated = time_at_error(rungs["prism"], target)
+            r = dict(asset=name, size="%dx%d" % (s["width"], s["height"]), rungs=rungs, target=target,
+                     top_spp=top_c["spp"], t_cycles=top_c["seconds"], t_prism=t_prism, extrapolated=extrapolated,
+                     ratio=t_prism / top_c["seconds"] if top_c["seconds"] > 0 else float("nan"),
+                     error_ratio=top_p["error"] / top_c["error"] if top_c["error"] > 0 else float("nan"),
+                     sample_time_ratio=top_p["seconds"] / top_c["seconds"] if top_c["seconds"] > 0 else float("nan"))
+            print("  Cycles reaches %.5f at %d spp in %.2f s; Prism needs %.2f s%s: equal-error time Prism/Cycles "
+                  "%.2f; error at %d spp Prism/Cycles %.2f; time per sample Prism/Cycles %.2f"
+                  % (target, top_c["spp"], top_c["seconds"], t_prism, " (extrapolated)" if extrapolated else "",
+                     r["ratio"], top_c["spp"], r["error_ratio"], r["sample_time_ratio"]))
+            with open(os.path.join(work, "equal_error.json"), "w") as f:
+                json.dump(r, f)
+            results.append(r)
+        except Exception as e:  # one asset failing must not hide the others
+            print("  FAILED: %s" % e, flush=True)
+            failed.append(name)
+    # The summary holds every asset measured into --out so far, so a run split by asset still gets one table.
+    results = []
+    for name in ASSETS:
+        path = os.path.join(a.out, name, "equal_error.json")
+        if os.path.isfile(path) and name not in failed:
+            with open(path) as f:
+                results.append(json.load(f))
+    if results:
+        write_equal_error_summary(a, results, failed)
+    return 1 if failed else 0
+
+
+EQUAL_ERROR_HEADER = ["asset", "size", "Cycles: spp, rel RMSE, s", "Prism s to that error", "equal-error time Prism/Cycles",
+                      "rel RMSE at equal spp Prism/Cycles", "time per sample Prism/Cycles"]
+
+
+def write_equal_error_summary(a, results, failed):
+    rows = [[r["asset"], r["size"], "%d, %.4f, %.2f" % (r["top_spp"], r["target"], r["t_cycles"]),
+             "%.2f%s" % (r["t_prism"], " (extrap.)" if r["extrapolated"] else ""), "%.2f" % r["ratio"],
+             "%.2f" % r["error_ratio"], "%.2f" % r["sample_time_ratio"]] for r in results]
+    with open(os.path.join(a.out, "equal_error.md"), "w") as f:
+        f.write("# Equal-error time, Prism vs Cycles\n\n%s, %d threads each, Prism `--max-depth %d`, references 2 x %d "
+                "spp with their noise subtracted, ladder %s spp.\n\n"
+                % (time.strftime("%Y-%m-%d %H:%M"), a.threads, a.max_depth, a.ref_spp // 2,
+                   ",".join(map(str, a.ladder))))
+        f.write("| " + " | ".join(EQUAL_ERROR_HEADER) + " |\n|" + "---|" * len(EQUAL_ERROR_HEADER) + "\n")
+        for row in rows:
+            f.write("| " + " | ".join(row) + " |\n")
+        if failed:
+            f.write("\nFailed: %s\n" % ", ".join(failed))
+    with open(os.path.join(a.out, "equal_error.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["asset", "renderer", "spp", "seconds", "rel_rmse"])
+        for r in results:
+            for renderer in ("cycles", "prism"):
+                for g in r["rungs"][renderer]:
+                    w.writerow([r["asset"], renderer, g["spp"], "%.4f" % g["seconds"], "%.6g" % g["error"]])
+    widths = [max(len(x[i]) for x in [EQUAL_ERROR_HEADER] + rows) for i in range(len(EQUAL_ERROR_HEADER))]
+    print("\nsummary: %s, %s" % (os.path.join(a.out, "equal_error.md"), os.path.join(a.out, "equal_error.csv")))
+    for k, row in enumerate([EQUAL_ERROR_HEADER] + rows):
+        print("  ".join(x.ljust(w) for x, w in zip(row, widths)))
+        if k == 0:
+            print("  ".join("-" * w for w in widths))
+
+
 # --------------------------------------------------------------------------- main
 def main():
     a = parse_args()
@@ -371,25 +579,19 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     if a.conventions:
         return check_conventions(a, harness, exrstats)
+    if a.equal_error:
+        return equal_error(a, harness, exrstats, assets_dir)
     print("Prism vs Cycles (Blender 3.4, ../shared/tools/cycles): %d spp, %d threads each, Prism --max-depth %d = "
           "Cycles --max-bounces %d, Cycles --lighting-mode COMPAT, box filter 1 px, seed %d, linear Rec.709"
           % (a.spp, a.threads, a.max_depth, a.max_depth - 1, a.seed))
     results, failed = [], []
     for name in a.assets:
-        src = os.path.join(assets_dir, name, "glTF", name + ".gltf")
         work = os.path.join(a.out, name)
         os.makedirs(work, exist_ok=True)
         try:
-            with open(src) as f:
-                g = json.load(f)
-            info = inspect_gltf(g)
-            cams = info["cam_by_index"]
-            if cams and a.camera >= len(cams):
-                raise RuntimeError("--camera %d: the asset has %d camera(s)" % (a.camera, len(cams)))
-            aspect = (camera_aspect(g, cams[a.camera]) if cams else None) or DEFAULT_ASPECT
-            width, height = a.width, a.height or max(1, round(a.width / aspect))
-            has_light = bool(info["punctual"] or info["emissive"])
-            env = None if has_light or a.env == "none" else a.env
+            s = asset_setup(a, assets_dir, name)
+            info, cams, width, height, env = s["info"], s["cams"], s["width"], s["height"], s["env"]
+            has_light = s["has_light"]
             print("\n== %s  %dx%d, %s, %s" % (
                 name, width, height,
                 ("camera %d (node %d)" % (a.camera, cams[a.camera])) if cams else
@@ -403,13 +605,8 @@ def main():
             cyc_exr = os.path.join(work, "cycles.exr")
             prism_exr = os.path.join(work, "prism.exr")
             # Cycles first: for an asset without a camera it prints the camera it framed, which Prism reuses.
-            cyc, auto, cyc_notes = run_cycles(a, harness, src, cyc_exr, width, height, a.camera, env)
-            if cams:
-                prism_in, prism_cam = src, info["cam_dfs"].index(cams[a.camera])
-            else:
-                if auto is None:
-                    raise RuntimeError("the harness printed no auto_camera_gltf line; see %s.log" % cyc_exr)
-                prism_in, prism_cam = write_with_camera(src, g, auto, width, height, os.path.join(work, "scene")), 0
+            cyc, auto, cyc_notes = run_cycles(a, harness, s["src"], cyc_exr, width, height, a.camera, env)
+            prism_in, prism_cam = prism_scene(a, s, auto, work)
             prism, warnings = run_prism(a, prism_in, prism_exr, width, height, prism_cam, env)
 
             p, ph = load_rgb(exrstats, prism_exr)

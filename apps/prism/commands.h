@@ -6,6 +6,7 @@
 namespace prism {
 
 void add_render_command(CLI::App& app);
+void add_info_command(CLI::App& app);
 void add_fresnel_command(CLI::App& app);
 void add_converge_command(CLI::App& app);
 void add_bench_command(CLI::App& app);  // bench rays; registers bench features too

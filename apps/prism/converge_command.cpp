@@ -30,7 +30,7 @@ struct Configuration {
   RenderOptions options;
 };
 
-// The baseline (path tracing, 4 wavelengths, NEE + MIS, independent samples) and one change
+// The baseline (the defaults: path tracing, 8 wavelengths, NEE + MIS, Sobol samples) and one change
 // of it per question the report answers.
 std::vector<Configuration> configurations(const ConvergeArgs& args) {
   RenderOptions base;
@@ -39,15 +39,15 @@ std::vector<Configuration> configurations(const ConvergeArgs& args) {
   base.seed = args.seed;
   base.progress = false;
   std::vector<Configuration> c(6, {"", base});
-  c[0].name = "path, 4 wavelengths, NEE+MIS, independent";
+  c[0].name = "path, 8 wavelengths, NEE+MIS, Sobol";
   c[1].name = "1 wavelength per path";
   c[1].options.wavelengths = 1;
-  c[2].name = "8 wavelengths per path";
-  c[2].options.wavelengths = 8;
+  c[2].name = "4 wavelengths per path";
+  c[2].options.wavelengths = 4;
   c[3].name = "BSDF sampling only";
   c[3].options.path.next_event = false;
-  c[4].name = "Sobol sampler";
-  c[4].options.sampler = SamplerKind::sobol;
+  c[4].name = "independent sampler";
+  c[4].options.sampler = SamplerKind::independent;
   c[5].name = "whitted";
   c[5].options.integrator = IntegratorKind::whitted;
   return c;

@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "Prism " PRISM_VERSION);
   app.require_subcommand(1);
   prism::add_render_command(app);
+  prism::add_info_command(app);
   prism::add_fresnel_command(app);
   prism::add_converge_command(app);
   prism::add_bench_command(app);

@@ -62,6 +62,7 @@ void add_scene_options(CLI::App* cmd, SceneArgs& args) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--camera", args.camera, "Use the N-th camera in scene order (0-based; default: the first)")
       ->check(CLI::NonNegativeNumber);
+  add_gltf_options(cmd, args.gltf);
   CLI::Option* env =
       cmd->add_option("--env", args.env, "Constant environment radiance as linear Rec.709 R,G,B (e.g. 1,1,1)");
   CLI::Option* env_map =
@@ -76,6 +77,16 @@ void add_scene_options(CLI::App* cmd, SceneArgs& args) {
   cmd->add_flag("!--no-energy-compensation", args.energy_compensation,
                 "Leave out the light scattered more than once between microfacets (as single-scattering "
                 "renderers do)");
+}
+
+void add_gltf_options(CLI::App* cmd, GltfOptions& options) {
+  cmd->add_option("--scene", options.scene,
+                  "Render the file's N-th scene (0-based; default: the file's `scene`, else 0)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--variant", options.variant, "KHR_materials_variants: use the material variant NAME");
+  cmd->add_option("--time", options.time, "Pose the animations at SECONDS (default: the file's own pose)");
+  cmd->add_option("--animation", options.animation,
+                  "Play only this animation, by name or 0-based index (default: all)");
 }
 
 void add_render_options(CLI::App* cmd, RenderOptions& options) {
@@ -95,11 +106,13 @@ void add_render_options(CLI::App* cmd, RenderOptions& options) {
   cmd->add_option("--wavelengths", options.wavelengths, "Wavelengths carried per path (1, 4 or 8)")
       ->default_val(kDefaultWavelengths)
       ->check(CLI::IsMember({1, 4, 8}));
-  cmd->add_option("--sampler", options.sampler,
-                  "independent: uniform random numbers; sobol: Owen-scrambled Sobol (best with 2^k spp)")
+  cmd->add_option(
+         "--sampler", options.sampler,
+         "sobol: Owen-scrambled Sobol (0,2)-sequence, every dimension stratified over a pixel's samples at any "
+         "count; independent: uniform random numbers")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, SamplerKind>{{"independent", SamplerKind::independent}, {"sobol", SamplerKind::sobol}}))
-      ->default_str("independent");
+      ->default_str("sobol");
   cmd->add_option_function<std::string>(
          "--light-sampling", [&options](const std::string& v) { options.path.next_event = v == "mis"; },
          "mis: next-event estimation combined with BSDF sampling by MIS; bsdf: BSDF sampling only")
@@ -107,7 +120,33 @@ void add_render_options(CLI::App* cmd, RenderOptions& options) {
       ->default_str("mis");
 }
 
-PreparedScene prepare_scene(const SceneArgs& args) {
+namespace {
+
+void build_world(PreparedScene& p, const SceneArgs& args) {
+  const Scene& scene = p.gltf->scene();
+  if (!p.camera || !scene.cameras.empty()) {  // a framing camera stays as the first pose framed it
+    const CameraDesc camera_desc = choose_camera(scene, args);
+    const Vec2i size = resolve_resolution(args.width, args.height, camera_desc);
+    p.camera = std::make_unique<Camera>(camera_desc, size.x, size.y);
+  }
+
+  const auto t0 = std::chrono::steady_clock::now();
+  p.world.reset();
+  p.world = std::make_unique<World>(scene);
+  log::info("scene features: {}", p.world->features().to_string());
+  log::info("built the BVH over {} triangles in {:.0f} ms ({:.1f} MB)", p.world->accel().triangle_count(),
+            1e3 * seconds_since(t0), p.world->accel().memory_bytes() / 1e6);
+}
+
+}  // namespace
+
+bool pose_scene(PreparedScene& p, const SceneArgs& args, double seconds) {
+  if (!p.gltf->pose(seconds)) return false;
+  build_world(p, args);  // the accel copies what moved
+  return true;
+}
+
+PreparedScene prepare_scene(const SceneArgs& args, bool keep_file) {
   std::optional<Rgb> env;
   if (!args.env.empty()) env = parse_rgb(args.env, "--env");
   cie();  // fail early if the data files are missing
@@ -119,8 +158,8 @@ PreparedScene prepare_scene(const SceneArgs& args) {
 
   PreparedScene p;
   auto t0 = std::chrono::steady_clock::now();
-  p.scene = std::make_unique<Scene>(load_gltf(args.scene));
-  Scene& scene = *p.scene;
+  p.gltf = std::make_unique<GltfScene>(args.scene, args.gltf);
+  Scene& scene = p.gltf->scene();
   if (env) scene.environment = RgbIlluminantSpectrum(*env);
   scene.environment_map = std::move(env_map);
   if (!args.energy_compensation)
@@ -131,16 +170,10 @@ PreparedScene prepare_scene(const SceneArgs& args) {
       "directional lights",
       args.scene, seconds_since(t0), scene.triangle_count(), scene.instances.size(), scene.materials.size(),
       scene.point_lights.size(), scene.spot_lights.size(), scene.directional_lights.size());
-
-  const CameraDesc camera_desc = choose_camera(scene, args);
-  const Vec2i size = resolve_resolution(args.width, args.height, camera_desc);
-  p.camera = std::make_unique<Camera>(camera_desc, size.x, size.y);
-
-  t0 = std::chrono::steady_clock::now();
-  p.world = std::make_unique<World>(scene);
-  log::info("scene features: {}", p.world->features().to_string());
-  log::info("built the BVH over {} triangles in {:.0f} ms ({:.1f} MB)", p.world->accel().triangle_count(),
-            1e3 * seconds_since(t0), p.world->accel().memory_bytes() / 1e6);
+  if ((args.gltf.time || !args.gltf.animation.empty()) && !p.gltf->animated())
+    log::info("{}: nothing is animated; --time and --animation change nothing", args.scene);
+  if (!keep_file) p.gltf->close();
+  build_world(p, args);
   if (p.world->lights().empty())
     log::warn("{}: the scene has no lights (the image will be black); light it with --env R,G,B", args.scene);
   return p;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "render/renderer.h"
+#include "scene/gltf_loader.h"
 
 namespace prism {
 
@@ -14,25 +15,34 @@ struct SceneArgs {
   std::string scene, env, env_map;
   float env_rotate = 0, env_scale = 1;
   int width = 0, height = 0, camera = -1;
+  GltfOptions gltf;
   bool energy_compensation = true;  // off: --no-energy-compensation (single-scattering microfacets)
 };
 
 // The scene file (positional), --env / --env-map / --env-rotate / --env-scale, --width,
-// --height, --camera and --no-energy-compensation.
+// --height, --camera, --no-energy-compensation, and the glTF choices of add_gltf_options.
 void add_scene_options(CLI::App* cmd, SceneArgs& args);
+
+// --scene, --variant, --time and --animation.
+void add_gltf_options(CLI::App* cmd, GltfOptions& options);
 
 // --spp, --seed, --threads, --max-depth, --integrator, --wavelengths, --sampler, --light-sampling.
 void add_render_options(CLI::App* cmd, RenderOptions& options);
 
 // A scene ready to render. The world refers to the scene, so both live behind pointers.
 struct PreparedScene {
-  std::unique_ptr<Scene> scene;
+  std::unique_ptr<GltfScene> gltf;
   std::unique_ptr<World> world;
   std::unique_ptr<Camera> camera;
 };
 
 // Loads and prepares the scene, logging what it found; fails with a clear message on bad input.
-PreparedScene prepare_scene(const SceneArgs& args);
+// Unless `keep_file` (to re-pose it with pose_scene), the parsed file is freed once loaded.
+PreparedScene prepare_scene(const SceneArgs& args, bool keep_file = false);
+
+// Poses the scene at `seconds` of its animations and rebuilds its world and camera, only when
+// something moved; returns whether it did.
+bool pose_scene(PreparedScene& prepared, const SceneArgs& args, double seconds);
 
 const char* integrator_name(IntegratorKind kind);
 const char* sampler_name(SamplerKind kind);

@@ -1,11 +1,16 @@
 #pragma once
-// Sample generators for Monte Carlo integration. Every (pixel, sample index) pair starts its own
-// deterministic stream, so images do not depend on thread count or tile order.
-//   independent: uniform random numbers (a PCG32 stream per pixel, jumped ahead per sample);
-//   sobol:       the (0,2)-sequence of Sobol's first two dimensions, Owen-scrambled and with
+// Sample generators for Monte Carlo integration. Every (pixel, sample index, seed) triple
+// addresses its own sample, whatever the total count, so images do not depend on thread count,
+// tile order or how a pixel's samples are split into passes or across machines.
+//   sobol (default): the (0,2)-sequence of Sobol's first two dimensions, Owen-scrambled and with
 //                its samples shuffled independently for every requested dimension ("padded"),
-//                so that each 1D or 2D request is stratified over a pixel's samples (Burley
-//                2020, "Practical Hash-based Owen Scrambling", JCGT 9(4)). Best with 2^k spp.
+//                so that each 1D or 2D request is stratified over a pixel's samples and
+//                different dimensions are uncorrelated (Burley 2020, "Practical Hash-based Owen
+//                Scrambling", JCGT 9(4)). The shuffle is itself a nested scramble of the index,
+//                so a pixel's first 2^j samples are always one aligned block of the sequence, a
+//                (0,j,2)-net: any count n is the union of the nets of n's binary digits, so it is
+//                stratified at every count, not only at powers of two.
+//   independent: uniform random numbers (a PCG32 stream per pixel, jumped ahead per sample).
 
 #include <cstdint>
 
@@ -41,13 +46,26 @@ constexpr uint32_t nested_uniform_scramble(uint32_t x, uint32_t seed) {
   return reverse_bits(laine_karras_permutation(reverse_bits(x), seed));
 }
 
-// Sobol's first two dimensions: the van der Corput sequence and the Pascal matrix mod 2.
-constexpr uint32_t dimension0(uint32_t i) { return reverse_bits(i); }
+// Sobol's first two dimensions: the van der Corput sequence (dimension 0: i's bits reversed) and
+// the Pascal matrix mod 2 (dimension 1). Dimension 1 is the XOR of the direction numbers v_j (v_0 = 2^31, v_j+1 = v_j ^
+// v_j >> 1) of i's set bits; tabulated per byte of i, so four lookups replace a loop over 32 bits.
+struct Dimension1Table {
+  uint32_t byte[4][256];
+};
+constexpr Dimension1Table make_dimension1_table() {
+  uint32_t v[32] = {1u << 31};
+  for (int j = 1; j < 32; ++j) v[j] = v[j - 1] ^ (v[j - 1] >> 1);
+  Dimension1Table t{};
+  for (int k = 0; k < 4; ++k)
+    for (uint32_t b = 0; b < 256; ++b)
+      for (int j = 0; j < 8; ++j)
+        if (b >> j & 1) t.byte[k][b] ^= v[8 * k + j];
+  return t;
+}
+inline constexpr Dimension1Table kDimension1 = make_dimension1_table();
 constexpr uint32_t dimension1(uint32_t i) {
-  uint32_t r = 0;
-  for (uint32_t v = 1u << 31; i; i >>= 1, v ^= v >> 1)
-    if (i & 1) r ^= v;
-  return r;
+  return kDimension1.byte[0][i & 255] ^ kDimension1.byte[1][i >> 8 & 255] ^ kDimension1.byte[2][i >> 16 & 255] ^
+         kDimension1.byte[3][i >> 24];
 }
 
 constexpr float to_unit(uint32_t x) { return float(x >> 8) * 0x1p-24f; }
@@ -56,11 +74,11 @@ constexpr float to_unit(uint32_t x) { return float(x >> 8) * 0x1p-24f; }
 
 class Sampler {
  public:
-  explicit Sampler(uint64_t seed = 0, SamplerKind kind = SamplerKind::independent) : seed_(seed), kind_(kind) {}
+  explicit Sampler(uint64_t seed = 0, SamplerKind kind = SamplerKind::sobol) : seed_(seed), kind_(kind) {}
 
   void start_pixel_sample(Vec2i pixel, int64_t sample_index) {
     pixel_hash_ = hash_ints(pixel.x, pixel.y, seed_);
-    index_ = uint32_t(sample_index);
+    reversed_index_ = sobol::reverse_bits(uint32_t(sample_index));
     dimension_ = 0;
     if (kind_ == SamplerKind::independent) {
       rng_.set_sequence(pixel_hash_, 0);
@@ -68,10 +86,17 @@ class Sampler {
     }
   }
 
+  // Dimensions in a fixed layout: the camera's (pixel jitter, wavelengths) first, then a block of
+  // kBounceDimensions per bounce, so each dimension serves one purpose in every sample of a pixel
+  // even when a path skips a draw (no light sample at a specular vertex, no roulette at the
+  // first), and stays stratified over the pixel's samples at any depth.
+  static constexpr uint32_t kCameraDimensions = 2, kBounceDimensions = 8;
+  void start_bounce(int depth) { dimension_ = kCameraDimensions + uint32_t(depth) * kBounceDimensions; }
+
   float get_1d() {
     if (kind_ == SamplerKind::independent) return rng_.uniform();
     const uint64_t h = hash_ints(pixel_hash_, dimension_++);
-    return sobol::to_unit(sobol::nested_uniform_scramble(sobol::dimension0(shuffled(h)), uint32_t(h >> 32)));
+    return sobol::to_unit(scrambled_dimension0(shuffled(h), uint32_t(h >> 32)));
   }
 
   Vec2f get_2d() {
@@ -81,19 +106,27 @@ class Sampler {
     }
     const uint64_t h = hash_ints(pixel_hash_, dimension_++);
     const uint32_t i = shuffled(h), h2 = uint32_t(mix_bits(h));
-    return {sobol::to_unit(sobol::nested_uniform_scramble(sobol::dimension0(i), uint32_t(h >> 32))),
+    return {sobol::to_unit(scrambled_dimension0(i, uint32_t(h >> 32))),
             sobol::to_unit(sobol::nested_uniform_scramble(sobol::dimension1(i), h2))};
   }
 
  private:
-  // This dimension's own permutation of the pixel's sample indices (padding).
-  uint32_t shuffled(uint64_t h) const { return sobol::nested_uniform_scramble(index_, uint32_t(h)); }
+  // This dimension's own permutation of the pixel's sample indices (padding): the nested
+  // scramble of the index, with its bit reversal done once per sample.
+  uint32_t shuffled(uint64_t h) const {
+    return sobol::reverse_bits(sobol::laine_karras_permutation(reversed_index_, uint32_t(h)));
+  }
+  // Dimension 0, Owen-scrambled: nested_uniform_scramble(reverse_bits(i), seed), whose inner
+  // reversals cancel.
+  static uint32_t scrambled_dimension0(uint32_t i, uint32_t seed) {
+    return sobol::reverse_bits(sobol::laine_karras_permutation(i, seed));
+  }
 
   uint64_t seed_;
   SamplerKind kind_;
   Rng rng_;
   uint64_t pixel_hash_ = 0;
-  uint32_t index_ = 0, dimension_ = 0;
+  uint32_t reversed_index_ = 0, dimension_ = 0;
 };
 
 }  // namespace prism

@@ -39,6 +39,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
   const PowerLightSampler& light_sampler = world.light_sampler();
 
   for (int depth = 0;; ++depth) {
+    sampler.start_bounce(depth);
     ++(depth == 0 ? counters.primary : counters.secondary);
     const auto si = world.intersect(ray);
     if constexpr (Media) beta *= media.transmittance(si ? si->t : kInfinity, lambda);

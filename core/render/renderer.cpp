@@ -49,7 +49,7 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
       for (int s = 0; s < options.spp; ++s) {
         sampler.start_pixel_sample({x, y}, s);
         const Vec2f jitter = sampler.get_2d();
-        SampledWavelengths<N> lambda = SampledWavelengths<N>::sample(sampler.get_1d());
+        SampledWavelengths<N> lambda = SampledWavelengths<N>::sample(sampler.get_2d());
         const Ray ray = camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y);
         const SampledSpectrum<N> L = radiance(world, ray, lambda, sampler, options.path, stats.rays);
         const Xyz xyz = to_xyz(L, lambda);

@@ -21,7 +21,7 @@ struct RenderOptions {
   uint64_t seed = 0;
   int threads = 0;                        // 0: all hardware threads
   int wavelengths = kDefaultWavelengths;  // per path: 1, 4 or 8
-  SamplerKind sampler = SamplerKind::independent;
+  SamplerKind sampler = SamplerKind::sobol;
   PathOptions path;
   std::optional<PathFeatures> features;  // default: what the scene needs (benchmarks force more)
   bool progress = true;

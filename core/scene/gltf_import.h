@@ -2,8 +2,10 @@
 // The glTF importer's inside, shared by its files (not a public header):
 //   gltf_loader.cpp     reading the file, the extensions Prism honours, the import's order
 //   gltf_materials.cpp  materials, textures and images
-//   gltf_meshes.cpp     primitives to triangle meshes
+//   gltf_meshes.cpp     primitives to triangle meshes; each node's copy of a mesh that deforms
 //   gltf_nodes.cpp      the node hierarchy: instances, cameras, punctual lights
+//   gltf_animation.cpp  node poses and animation channels
+//   gltf_morph.cpp, gltf_skin.cpp, gltf_variants.cpp  morph targets, skins, material variants
 
 #include <tiny_gltf.h>
 
@@ -16,6 +18,10 @@
 #include <vector>
 
 #include "base/error.h"
+#include "scene/gltf_animation.h"
+#include "scene/gltf_loader.h"
+#include "scene/gltf_morph.h"
+#include "scene/gltf_skin.h"
 #include "scene/scene.h"
 
 namespace prism {
@@ -28,20 +34,26 @@ std::string prism_extra(const tinygltf::Material& m, const char* field);
 
 bool all_finite(const std::vector<double>& v);
 
-// Converts one parsed glTF model into a Scene, checking every index it follows.
+// What Prism does with each glTF extension it implements, for `prism info`; null: unsupported.
+const char* extension_handling(const std::string& extension);
+
+// Converts one parsed glTF model into a Scene, checking every index it follows, and re-poses it
+// at other times of its animations.
 class GltfLoader {
  public:
-  GltfLoader(const tinygltf::Model& model, const std::filesystem::path& file, Scene& scene)
-      : model_(model),
-        file_(file.string()),
-        scene_(scene),
-        meshes_(model.meshes.size()),
-        mesh_loaded_(model.meshes.size(), false) {}
+  GltfLoader(const tinygltf::Model& model, const std::filesystem::path& file, const GltfOptions& options, Scene& scene);
 
-  void load();
+  void load();             // the scene as `options` choose it
+  bool pose(double time);  // false: nothing moved
+  bool animated() const;
+  int scene_index() const { return scene_index_; }
+  const std::vector<Animation>& animations() const { return animations_; }
 
  private:
   void check_extensions();
+  void choose(const GltfOptions& options);
+  std::vector<NodePose> pose_at(std::optional<double> time) const;
+  void build();
 
   template <typename Vec>
   void check_index(int index, const Vec& items, const char* what, const std::string& context) const {
@@ -65,8 +77,20 @@ class GltfLoader {
   const std::vector<uint32_t>& mesh(int index);
   std::optional<Mesh> convert_primitive(const tinygltf::Primitive& prim, const std::string& context);
 
+  // A primitive whose vertices move: its base attributes, morph targets and skin weights,
+  // read once.
+  struct Deformable {
+    Mesh base;
+    std::vector<MorphTarget> targets;
+    SkinWeights skin;
+    bool generated_tangents = false;
+  };
+  const std::vector<Deformable>& deformable(int mesh_index);
+  bool deforms(const tinygltf::Node& node) const;
+  void add_deformed(int node_index, const Transform& world);
+
   // nodes (gltf_nodes.cpp)
-  Transform local_transform(const tinygltf::Node& node, const std::string& context) const;
+  void compute_node_world();
   void traverse_scene();
   void visit(int index, const Transform& parent, std::vector<bool>& on_path);
   void add_camera(const tinygltf::Camera& cam, const Transform& world, const std::string& context);
@@ -75,6 +99,19 @@ class GltfLoader {
   const tinygltf::Model& model_;
   std::string file_;
   Scene& scene_;
+  int scene_index_ = 0;
+  int variant_ = -1;    // KHR_materials_variants index, -1: default materials
+  int animation_ = -1;  // the animation to play, -1: all
+  std::optional<double> time_;
+  std::vector<Animation> animations_;
+  std::vector<NodePose> pose_;
+  std::vector<Transform> node_world_;
+  std::map<int, std::vector<Deformable>> deformables_;  // by glTF mesh
+  struct Deformed {
+    std::vector<uint32_t> meshes;  // into scene_.meshes, one per primitive
+    std::vector<double> inputs;    // the weights and joint matrices they were posed with
+  };
+  std::map<int, Deformed> deformed_;  // by node
   std::vector<std::vector<uint32_t>> meshes_;
   std::vector<bool> mesh_loaded_;
   std::map<int, uint32_t> material_map_;

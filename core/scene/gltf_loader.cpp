@@ -5,23 +5,26 @@
 
 #include "base/log.h"
 #include "scene/gltf_import.h"
+#include "scene/gltf_variants.h"
 
 namespace prism {
 
 namespace {
 
-// Extensions whose meaning Prism implements. A file that requires any other is refused.
-const std::set<std::string> kSupportedExtensions = {
-    "KHR_materials_emissive_strength",
-    "KHR_lights_punctual",
-    "KHR_materials_transmission",
-    "KHR_materials_ior",
-    "KHR_materials_volume",
-    "KHR_materials_dispersion",
-    "KHR_materials_specular",
-    "KHR_materials_anisotropy",
-    "KHR_texture_transform",
-    "KHR_mesh_quantization",
+// Extensions whose meaning Prism implements, and what it does with each (`prism info` prints
+// it). A file that requires any other is refused; an optional one is ignored with a warning.
+const std::map<std::string, const char*> kSupportedExtensions = {
+    {"KHR_materials_emissive_strength", "emission scaled by emissiveStrength"},
+    {"KHR_lights_punctual", "point, spot and directional lights (range ignored)"},
+    {"KHR_materials_transmission", "dielectric transmission, rough or smooth"},
+    {"KHR_materials_ior", "the dielectric's index of refraction"},
+    {"KHR_materials_volume", "closed volumes with Beer-Lambert absorption; thickness 0 is a thin wall"},
+    {"KHR_materials_dispersion", "index varying with wavelength (Abbe number)"},
+    {"KHR_materials_specular", "specularFactor scales the dielectric reflectance (colour ignored)"},
+    {"KHR_materials_anisotropy", "anisotropic GGX along the tangent frame (strength, rotation, direction texture)"},
+    {"KHR_texture_transform", "texture coordinate offset, rotation and scale"},
+    {"KHR_mesh_quantization", "integer and normalized vertex attributes"},
+    {"KHR_materials_variants", "material sets, chosen with --variant NAME"},
 };
 
 // Images are kept encoded at load time and decoded only when a material that the scene's
@@ -59,10 +62,71 @@ bool all_finite(const std::vector<double>& v) {
   return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
 }
 
-void GltfLoader::load() {
+const char* extension_handling(const std::string& extension) {
+  const auto it = kSupportedExtensions.find(extension);
+  return it == kSupportedExtensions.end() ? nullptr : it->second;
+}
+
+GltfLoader::GltfLoader(const tinygltf::Model& model, const std::filesystem::path& file, const GltfOptions& options,
+                       Scene& scene)
+    : model_(model),
+      file_(file.string()),
+      scene_(scene),
+      meshes_(model.meshes.size()),
+      mesh_loaded_(model.meshes.size(), false) {
   check_extensions();
-  traverse_scene();
+  choose(options);
+}
+
+void GltfLoader::load() {
+  pose_ = pose_at(time_);
+  build();
   if (scene_.instances.empty()) log::warn("{}: the scene has no triangles", file_);
+}
+
+void GltfLoader::choose(const GltfOptions& options) {
+  scene_index_ = options.scene.value_or(model_.defaultScene >= 0 ? model_.defaultScene : 0);
+  if (options.scene && size_t(*options.scene) >= std::max<size_t>(model_.scenes.size(), 1))
+    fail("{}: --scene {} requested, but the file has {} scene(s)", file_, *options.scene, model_.scenes.size());
+  if (!options.variant.empty()) variant_ = find_variant(model_, options.variant, file_);
+  animations_ = read_animations(model_, file_);
+  if (!options.animation.empty()) animation_ = find_animation(animations_, options.animation, file_);
+  time_ = options.time;
+  if (!time_ && animation_ >= 0) time_ = animations_[animation_].start;
+  if (time_ && !std::isfinite(*time_)) fail("{}: the time must be a finite number of seconds", file_);
+}
+
+bool GltfLoader::animated() const {
+  for (size_t a = 0; a < animations_.size(); ++a)
+    if ((animation_ < 0 || int(a) == animation_) && !animations_[a].channels.empty()) return true;
+  return false;
+}
+
+std::vector<NodePose> GltfLoader::pose_at(std::optional<double> time) const {
+  std::vector<NodePose> pose = rest_pose(model_, file_);
+  if (time)
+    for (size_t a = 0; a < animations_.size(); ++a)
+      if (animation_ < 0 || int(a) == animation_) animate(animations_[a], *time, pose);
+  return pose;
+}
+
+bool GltfLoader::pose(double time) {
+  std::vector<NodePose> pose = pose_at(time);
+  if (pose == pose_) return false;
+  pose_ = std::move(pose);
+  build();
+  return true;
+}
+
+// The instances, cameras, lights and deformed meshes of the current pose.
+void GltfLoader::build() {
+  scene_.instances.clear();
+  scene_.cameras.clear();
+  scene_.point_lights.clear();
+  scene_.spot_lights.clear();
+  scene_.directional_lights.clear();
+  compute_node_world();
+  traverse_scene();
 }
 
 void GltfLoader::check_extensions() {
@@ -76,7 +140,9 @@ void GltfLoader::warn_once(const std::string& message) {
   if (warned_.insert(message).second) log::warn("{}: {}", file_, message);
 }
 
-Scene load_gltf(const std::filesystem::path& file) {
+namespace {
+
+tinygltf::Model read_gltf(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file)) fail("{}: no such file", file.string());
   tinygltf::TinyGLTF reader;
   reader.SetImageLoader(keep_encoded_image, nullptr);
@@ -88,10 +154,71 @@ Scene load_gltf(const std::filesystem::path& file) {
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
     fail("{}: not a valid glTF file: {}", file.string(), err.empty() ? "unknown error" : err);
   }
+  return model;
+}
+
+}  // namespace
+
+// The parsed file, the scene built from it and the loader that keeps it posed; they refer to
+// each other, so they stay together at one address.
+struct GltfScene::State {
+  std::unique_ptr<tinygltf::Model> model;
   Scene scene;
-  scene.source = file;
-  GltfLoader(model, file, scene).load();
-  return scene;
+  std::unique_ptr<GltfLoader> loader;
+  State(const std::filesystem::path& file, const GltfOptions& options)
+      : model(std::make_unique<tinygltf::Model>(read_gltf(file))),
+        loader(std::make_unique<GltfLoader>(*model, file, options, scene)) {
+    scene.source = file;
+  }
+  const GltfLoader& open() const {
+    if (!loader) fail("{}: internal error: the file was closed", scene.source.string());
+    return *loader;
+  }
+};
+
+GltfScene::GltfScene(const std::filesystem::path& file, const GltfOptions& options)
+    : state_(std::make_unique<State>(file, options)) {
+  state_->loader->load();
+}
+
+GltfScene::~GltfScene() = default;
+
+Scene& GltfScene::scene() { return state_->scene; }
+bool GltfScene::animated() const { return state_->open().animated(); }
+bool GltfScene::pose(double seconds) {
+  state_->open();
+  return state_->loader->pose(seconds);
+}
+
+void GltfScene::close() {
+  state_->loader.reset();
+  state_->model.reset();
+}
+
+GltfSummary GltfScene::summary() const {
+  state_->open();
+  const tinygltf::Model& model = *state_->model;
+  GltfSummary s;
+  for (const auto& scene : model.scenes) s.scenes.push_back(scene.name);
+  s.scene = state_->loader->scene_index();
+  for (const auto& camera : model.cameras) s.cameras.push_back(camera.name);
+  s.variants = material_variants(model);
+  for (const Animation& a : state_->loader->animations())
+    s.animations.push_back({a.name, a.start, a.end, a.channels.size()});
+  for (const std::string& ext : model.extensionsUsed) {
+    const bool required = std::count(model.extensionsRequired.begin(), model.extensionsRequired.end(), ext) > 0;
+    const char* handling = extension_handling(ext);
+    s.extensions.push_back({ext, required, handling ? handling : ""});
+  }
+  s.skins = model.skins.size();
+  for (const auto& mesh : model.meshes)
+    s.morphed_meshes += !mesh.primitives.empty() && !mesh.primitives[0].targets.empty();
+  return s;
+}
+
+Scene load_gltf(const std::filesystem::path& file, const GltfOptions& options) {
+  GltfScene gltf(file, options);
+  return std::move(gltf.scene());
 }
 
 }  // namespace prism

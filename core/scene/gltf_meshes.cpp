@@ -1,11 +1,34 @@
 // glTF mesh primitives to Scene meshes: attributes read through gltf_accessor, checked against
-// the vertex count, one Mesh per triangle primitive.
+// the vertex count, one Mesh per triangle primitive; strips and fans become triangle lists.
+// Meshes that morph or are skinned get a copy per node, re-posed when their inputs change.
 
 #include "base/log.h"
 #include "scene/gltf_accessor.h"
 #include "scene/gltf_import.h"
+#include "scene/gltf_variants.h"
 
 namespace prism {
+
+namespace {
+
+// The triangles of a TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN primitive's vertex sequence, in
+// the winding glTF 2.0 §3.7.2.1 gives them: strip triangle i is (v_i, v_{i+1+i%2}, v_{i+2−i%2}),
+// fan triangle i is (v_{i+1}, v_{i+2}, v_0).
+std::vector<uint32_t> triangle_list(std::vector<uint32_t> v, int mode) {
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    v.resize(v.size() - v.size() % 3);
+    return v;
+  }
+  std::vector<uint32_t> list;
+  for (size_t i = 0; i + 2 < v.size(); ++i)
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+      list.insert(list.end(), {v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
+    else
+      list.insert(list.end(), {v[i + 1], v[i + 2], v[0]});
+  return list;
+}
+
+}  // namespace
 
 // Scene meshes (one per triangle primitive) of glTF mesh `index`, converted on first use.
 const std::vector<uint32_t>& GltfLoader::mesh(int index) {
@@ -24,10 +47,12 @@ const std::vector<uint32_t>& GltfLoader::mesh(int index) {
 }
 
 std::optional<Mesh> GltfLoader::convert_primitive(const tinygltf::Primitive& prim, const std::string& context) {
-  if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
-    warn_once(fmt::format("skipping primitives of mode {} (only triangles are rendered)", prim.mode));
+  if (prim.mode >= TINYGLTF_MODE_POINTS && prim.mode <= TINYGLTF_MODE_LINE_STRIP) {
+    warn_once("points and lines are not rendered (Prism renders surfaces)");
     return std::nullopt;
   }
+  if (prim.mode < TINYGLTF_MODE_POINTS || prim.mode > TINYGLTF_MODE_TRIANGLE_FAN)
+    fail("{}: unknown primitive mode {}", context, prim.mode);
   const auto pos = prim.attributes.find("POSITION");
   if (pos == prim.attributes.end()) {
     warn_once("skipping primitives without POSITION data");
@@ -83,20 +108,20 @@ std::optional<Mesh> GltfLoader::convert_primitive(const tinygltf::Primitive& pri
     for (size_t i = 0; i < t.size(); i += 4)
       mesh.tangents.push_back({t[i], t[i + 1], t[i + 2], t[i + 3] < 0 ? -1.f : 1.f});
   }
+  std::vector<uint32_t> vertices;
   if (prim.indices >= 0) {
-    mesh.indices = read_accessor_indices(model_, prim.indices, context + " indices");
-    for (uint32_t i : mesh.indices)
+    vertices = read_accessor_indices(model_, prim.indices, context + " indices");
+    for (uint32_t i : vertices)
       if (i >= mesh.positions.size())
         fail("{} indices: index {} out of range ({} vertices)", context, i, mesh.positions.size());
   } else {
-    mesh.indices.resize(mesh.positions.size());
-    for (uint32_t i = 0; i < mesh.indices.size(); ++i) mesh.indices[i] = i;
+    vertices.resize(mesh.positions.size());
+    for (uint32_t i = 0; i < vertices.size(); ++i) vertices[i] = i;
   }
-  if (mesh.indices.size() % 3 != 0) {
+  if (prim.mode == TINYGLTF_MODE_TRIANGLES && vertices.size() % 3 != 0)
     warn_once("dropping a trailing partial triangle");
-    mesh.indices.resize(mesh.indices.size() - mesh.indices.size() % 3);
-  }
-  mesh.material = material_index(prim.material, context);
+  mesh.indices = triangle_list(std::move(vertices), prim.mode);
+  mesh.material = material_index(variant_material(prim, variant_), context);
   const Material& material = scene_.materials[mesh.material];
   const auto* pbr = std::get_if<PbrMaterial>(&material.kind);
   if (mesh.tangents.empty()) {  // normal maps and anisotropy need the tangent frame
@@ -106,6 +131,78 @@ std::optional<Mesh> GltfLoader::convert_primitive(const tinygltf::Primitive& pri
       generate_tangents(mesh, pbr->anisotropy_texture ? pbr->anisotropy_texture->texcoord : 0);
   }
   return mesh;
+}
+
+bool GltfLoader::deforms(const tinygltf::Node& node) const {
+  if (node.skin >= 0) return true;
+  const auto& prims = model_.meshes[node.mesh].primitives;
+  return std::any_of(prims.begin(), prims.end(), [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
+}
+
+// The base attributes, morph targets and skin weights of glTF mesh `index`'s primitives, read once.
+const std::vector<GltfLoader::Deformable>& GltfLoader::deformable(int index) {
+  auto [it, inserted] = deformables_.try_emplace(index);
+  if (!inserted) return it->second;
+  const tinygltf::Mesh& m = model_.meshes[index];
+  for (size_t p = 0; p < m.primitives.size(); ++p) {
+    const std::string context = fmt::format("{}: mesh {} '{}' primitive {}", file_, index, m.name, p);
+    const tinygltf::Primitive& prim = m.primitives[p];
+    auto converted = convert_primitive(prim, context);
+    if (!converted) continue;
+    Deformable d;
+    d.base = std::move(*converted);
+    d.base.name = m.name.empty() ? fmt::format("mesh{}", index) : m.name;
+    d.targets = read_morph_targets(model_, prim, d.base.positions.size(), context);
+    d.skin = read_skin_weights(model_, prim, d.base.positions.size(), context);
+    d.generated_tangents = !d.base.tangents.empty() && !prim.attributes.count("TANGENT");
+    it->second.push_back(std::move(d));
+  }
+  return it->second;
+}
+
+// A node's morphed or skinned mesh: its own copy of each primitive, deformed again only when the
+// morph weights or joint matrices it was posed with change. A skinned primitive lands in world
+// space by its joints alone; the node's transform is ignored (glTF 2.0 §3.7.3.3).
+void GltfLoader::add_deformed(int index, const Transform& world) {
+  const tinygltf::Node& node = model_.nodes[index];
+  const std::string context = fmt::format("{}: node {} '{}'", file_, index, node.name);
+  const std::vector<Deformable>& sources = deformable(node.mesh);
+  std::vector<Transform> joints;
+  if (node.skin >= 0) {
+    check_index(node.skin, model_.skins, "skin", context);
+    joints =
+        joint_matrices(model_, model_.skins[node.skin], node_world_, fmt::format("{} skin {}", context, node.skin));
+  }
+  std::vector<double> inputs = pose_[index].weights;
+  for (const Transform& j : joints)
+    for (const auto& row : j.m) inputs.insert(inputs.end(), row.begin(), row.end());
+  Deformed& d = deformed_[index];
+  const bool first = d.meshes.empty();
+  if (first)
+    for (const Deformable& source : sources) {
+      d.meshes.push_back(uint32_t(scene_.meshes.size()));
+      scene_.meshes.push_back(source.base);
+    }
+  if (first || inputs != d.inputs) {
+    for (size_t k = 0; k < sources.size(); ++k) {
+      const Deformable& source = sources[k];
+      Mesh& mesh = scene_.meshes[d.meshes[k]];
+      mesh.positions = source.base.positions;
+      mesh.normals = source.base.normals;
+      mesh.tangents = source.base.tangents;
+      apply_morph(source.targets, pose_[index].weights, mesh);
+      if (!joints.empty() && !source.skin.empty()) apply_skin(source.skin, joints, mesh, context);
+      if (source.generated_tangents) {
+        mesh.tangents.clear();
+        generate_tangents(mesh, scene_.materials[mesh.material].normal_texture->texcoord);
+      }
+    }
+    d.inputs = std::move(inputs);
+  }
+  for (size_t k = 0; k < sources.size(); ++k) {
+    const bool skinned = !joints.empty() && !sources[k].skin.empty();
+    scene_.instances.push_back({d.meshes[k], skinned ? Transform{} : world});
+  }
 }
 
 }  // namespace prism

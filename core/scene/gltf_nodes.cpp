@@ -1,4 +1,5 @@
-// The glTF node hierarchy: world transforms, mesh instances, cameras and KHR_lights_punctual.
+// The glTF node hierarchy in the current pose: world transforms, mesh instances, cameras and
+// KHR_lights_punctual.
 
 #include <cmath>
 
@@ -7,34 +8,32 @@
 
 namespace prism {
 
-Transform GltfLoader::local_transform(const tinygltf::Node& node, const std::string& context) const {
-  if (!node.matrix.empty()) {
-    if (node.matrix.size() != 16 || !all_finite(node.matrix)) fail("{}: matrix must be 16 finite numbers", context);
-    return Transform::from_column_major(node.matrix.data());
+// Every node's world transform in the current pose (skins need their joints' wherever they are).
+void GltfLoader::compute_node_world() {
+  node_world_.assign(model_.nodes.size(), Transform{});
+  std::vector<bool> is_child(model_.nodes.size(), false);
+  for (const auto& n : model_.nodes)
+    for (int c : n.children)
+      if (c >= 0 && size_t(c) < is_child.size()) is_child[c] = true;
+  std::vector<std::pair<int, Transform>> stack;
+  for (size_t i = 0; i < model_.nodes.size(); ++i)
+    if (!is_child[i]) stack.push_back({int(i), Transform{}});
+  size_t visits = 0;
+  while (!stack.empty()) {
+    const auto [index, parent] = stack.back();
+    stack.pop_back();
+    if (++visits > model_.nodes.size()) break;  // a node with two parents; visit() reports it if the scene uses it
+    node_world_[index] = parent * pose_[index].local();
+    for (int c : model_.nodes[index].children)
+      if (c >= 0 && size_t(c) < model_.nodes.size()) stack.push_back({c, node_world_[index]});
   }
-  Transform t;
-  if (!node.translation.empty()) {
-    if (node.translation.size() != 3 || !all_finite(node.translation))
-      fail("{}: translation must be 3 finite numbers", context);
-    t = Transform::translate({node.translation[0], node.translation[1], node.translation[2]});
-  }
-  if (!node.rotation.empty()) {
-    if (node.rotation.size() != 4 || !all_finite(node.rotation)) fail("{}: rotation must be 4 finite numbers", context);
-    t = t * Transform::rotate(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]);
-  }
-  if (!node.scale.empty()) {
-    if (node.scale.size() != 3 || !all_finite(node.scale)) fail("{}: scale must be 3 finite numbers", context);
-    t = t * Transform::scale({node.scale[0], node.scale[1], node.scale[2]});
-  }
-  return t;
 }
 
 void GltfLoader::traverse_scene() {
   std::vector<int> roots;
   if (!model_.scenes.empty()) {
-    const int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
-    check_index(s, model_.scenes, "scene", "the default scene");
-    roots = model_.scenes[s].nodes;
+    check_index(scene_index_, model_.scenes, "scene", "the default scene");
+    roots = model_.scenes[scene_index_].nodes;
   } else {
     std::vector<bool> is_child(model_.nodes.size(), false);
     for (const auto& n : model_.nodes)
@@ -55,10 +54,13 @@ void GltfLoader::visit(int index, const Transform& parent, std::vector<bool>& on
   on_path[index] = true;
   const tinygltf::Node& node = model_.nodes[index];
   const std::string context = fmt::format("{}: node {} '{}'", file_, index, node.name);
-  const Transform world = parent * local_transform(node, context);
+  const Transform world = parent * pose_[index].local();
   if (node.mesh >= 0) {
     check_index(node.mesh, model_.meshes, "mesh", context);
-    for (uint32_t m : mesh(node.mesh)) scene_.instances.push_back({m, world});
+    if (deforms(node))
+      add_deformed(index, world);
+    else
+      for (uint32_t m : mesh(node.mesh)) scene_.instances.push_back({m, world});
   }
   if (node.camera >= 0) {
     check_index(node.camera, model_.cameras, "camera", context);

@@ -1,12 +1,15 @@
 // Core utilities: transforms, frames, random numbers, warps.
 
 #include <catch2/catch.hpp>
+#include <utility>
+#include <vector>
 
 #include "base/frame.h"
 #include "base/rng.h"
 #include "base/sampler.h"
 #include "base/transform.h"
 #include "base/warp.h"
+#include "support/chi2.h"
 
 using namespace prism;
 
@@ -115,6 +118,75 @@ TEST_CASE("the Sobol sampler stratifies each dimension over a pixel's samples") 
   a.start_pixel_sample({0, 0}, 3);
   b.start_pixel_sample({1, 0}, 3);
   CHECK(a.get_1d() != b.get_1d());
+}
+
+namespace {
+// Points of one 2D request (`dimension` draws after start_bounce(bounce)) over a pixel's first n samples.
+std::vector<Vec2f> sobol_points(Vec2i pixel, int n, int bounce, int dimension) {
+  Sampler sampler(11, SamplerKind::sobol);
+  std::vector<Vec2f> points;
+  for (int s = 0; s < n; ++s) {
+    sampler.start_pixel_sample(pixel, s);
+    sampler.start_bounce(bounce);
+    for (int d = 0; d < dimension; ++d) sampler.get_1d();
+    points.push_back(sampler.get_2d());
+  }
+  return points;
+}
+
+// Largest and smallest number of points in the elementary intervals [a/2^j, (a+1)/2^j) x
+// [b/2^(m-j), (b+1)/2^(m-j)) of area 2^-m, over every shape j = 0..m.
+std::pair<int, int> elementary_interval_counts(const std::vector<Vec2f>& points, int m) {
+  int lo = int(points.size()), hi = 0;
+  for (int j = 0; j <= m; ++j) {
+    std::vector<int> count(size_t(1) << m, 0);
+    for (const Vec2f& p : points) ++count[(size_t(p.x * float(1 << j)) << (m - j)) + size_t(p.y * float(1 << (m - j)))];
+    for (int c : count) lo = std::min(lo, c), hi = std::max(hi, c);
+  }
+  return {lo, hi};
+}
+}  // namespace
+
+TEST_CASE("the Sobol sampler is a (0,2)-sequence in every 2D request, at every count and depth") {
+  // Every prefix of 2^m samples is a (0,m,2)-net: each elementary interval of area 2^-m holds
+  // exactly one point. Checked for the pixel jitter, a first-bounce and a deep (bounce 40) request.
+  for (const int bounce : {0, 40})
+    for (const int m : {0, 1, 2, 3, 4, 5, 6, 7, 8}) {
+      INFO("bounce " << bounce << ", 2^" << m << " samples");
+      CHECK(elementary_interval_counts(sobol_points({3, 7}, 1 << m, bounce, 3), m) == std::pair{1, 1});
+    }
+  // Non-powers of two: n = 2^m + 2^(m-1) is a (0,m,2)-net plus a (0,m-1,2)-net, so each interval
+  // of area 2^-m holds one or two points (independent sampling leaves some empty, others with 4+).
+  for (const int n : {3, 6, 12, 24, 48, 96, 192}) {
+    INFO(n << " samples");
+    int m = 0;
+    while ((2 << m) <= n) ++m;
+    CHECK(elementary_interval_counts(sobol_points({1, 2}, n, 2, 1), m) == std::pair{1, 2});
+  }
+}
+
+TEST_CASE("the Sobol sampler's dimensions are uncorrelated: pixel jitter against a BSDF sample (chi-square)") {
+  // The (jitter x, BSDF direction u) pairs of 256 pixels x 64 samples in a 16 x 16 histogram.
+  // Padding shuffles each dimension's samples independently, so the pairs are uniform; without
+  // it, both would be the same (scrambled) sequence and fill 16 of the 256 cells.
+  constexpr int kBins = 16, kPixels = 256, kSpp = 64;
+  std::vector<double> count(kBins * kBins, 0);
+  Sampler sampler(2, SamplerKind::sobol);
+  for (int p = 0; p < kPixels; ++p)
+    for (int s = 0; s < kSpp; ++s) {
+      sampler.start_pixel_sample({p % 16, p / 16}, s);
+      const float jitter = sampler.get_2d().x;
+      sampler.start_bounce(0);
+      for (int d = 0; d < 3; ++d) sampler.get_1d();  // light choice, light point, lobe choice
+      const float u = sampler.get_2d().x;            // the BSDF direction
+      ++count[int(jitter * kBins) * kBins + int(u * kBins)];
+    }
+  const double expected = double(kPixels) * kSpp / (kBins * kBins);
+  double statistic = 0;
+  for (double c : count) statistic += sqr(c - expected) / expected;
+  const double p_value = 1 - test::regularized_gamma_p((kBins * kBins - 1) / 2.0, statistic / 2);
+  INFO("chi2 " << statistic << " for " << kBins * kBins - 1 << " degrees of freedom, p " << p_value);
+  CHECK(p_value > 1e-3);
 }
 
 TEST_CASE("samplers are deterministic per pixel and sample index") {

@@ -33,7 +33,7 @@ struct Case {
   float slack = 0;
 };
 
-SampledWavelengths<N> wavelengths() { return SampledWavelengths<N>::sample(0.37f); }
+SampledWavelengths<N> wavelengths() { return SampledWavelengths<N>::sample({0.48f, 0.37f}); }
 
 Bsdf<N> bsdf_of(const PbrMaterial& m, float front_ior = 1) {
   auto lambda = wavelengths();

@@ -59,8 +59,8 @@ TEST_CASE("Beer-Lambert: a slab transmits exp(-sigma_a d) straight on") {
     Sampler sampler(1);
     for (float lambda_nm : {400.f, 550.f, 700.f}) {
       sampler.start_pixel_sample({0, 0}, 0);
-      SampledWavelengths<1> lambda = SampledWavelengths<1>::sample((lambda_nm - kLambdaMin) / (kLambdaMax - kLambdaMin),
-                                                                   WavelengthSampling::uniform);
+      SampledWavelengths<1> lambda = SampledWavelengths<1>::sample(
+          {(lambda_nm - kLambdaMin) / (kLambdaMax - kLambdaMin), 0.f}, WavelengthSampling::uniform);
       RayCounters counters;
       const auto L = path_radiance<1, true, true>(world, Ray{{0, 0, 3}, {0, 0, -1}, kInfinity}, lambda, sampler,
                                                   options, counters);
@@ -98,13 +98,13 @@ TEST_CASE("KHR_materials_volume: white light turns into attenuationColor at atte
 TEST_CASE("a dispersive interface keeps only the hero wavelength, a plain one keeps all") {
   Material flint = glass(MaterialCatalogue::standard().dielectric("N-SF11"));
   Material plain = glass(ConstantIor{1.5f});
-  auto lambda = SampledWavelengths<4>::sample(0.3f);
+  auto lambda = SampledWavelengths<4>::sample({0.2f, 0.3f});
   make_bsdf(plain, {}, lambda, nullptr);
   CHECK_FALSE(lambda.secondary_terminated());
   make_bsdf(flint, {}, lambda, nullptr);
   CHECK(lambda.secondary_terminated());
   // A plain glass inside a dispersive medium also sees a λ-dependent index ratio.
-  auto lambda2 = SampledWavelengths<4>::sample(0.3f);
+  auto lambda2 = SampledWavelengths<4>::sample({0.2f, 0.3f});
   make_bsdf(plain, {}, lambda2, flint.dielectric());
   CHECK(lambda2.secondary_terminated());
 }

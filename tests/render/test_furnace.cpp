@@ -3,6 +3,7 @@
 // a closed sphere of albedo ρ that emits Le, every point sees Le / (1 − ρ).
 
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "support/test_scenes.h"
 
@@ -78,6 +79,37 @@ TEST_CASE("furnace: unbiased with the Sobol sampler and with BSDF sampling only"
     INFO((sobol ? "sobol" : "BSDF sampling only"));
     test::check_mean(img, 0, 0, 16, 16, 0.5, 0.01);
   }
+}
+
+TEST_CASE("furnace: the default Sobol sampler converges at least as fast as independent samples") {
+  // A sphere of albedo 0.5 filling the image under a uniform environment of radiance 1: every
+  // pixel's exact value is 0.5, so the image's MSE is the estimator's. Reported per doubling of
+  // the spp (0.5 is the Monte Carlo rate; stratification does better).
+  Scene scene;
+  scene.materials.push_back(test::diffuse({0.5f, 0.5f, 0.5f}));
+  test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 3, 0));
+  scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
+  const auto mse = [&](SamplerKind kind, int spp) {
+    RenderOptions options;
+    options.spp = spp;
+    options.sampler = kind;
+    const auto img = test::render_rgb(scene, test::look_at({0, 0, 5.f}, {0, 0, 0}, 12.f), 16, 16, options);
+    double se = 0;
+    for (float v : img.rgb) se += sqr(double(v) - 0.5);
+    return se / double(img.rgb.size());
+  };
+  double first[2] = {}, last[2] = {};
+  for (const int spp : {4, 16, 64}) {
+    const double sobol = mse(SamplerKind::sobol, spp), independent = mse(SamplerKind::independent, spp);
+    WARN(spp << " spp: MSE Sobol " << sobol << ", independent " << independent);
+    CHECK(sobol <= independent);
+    if (spp == 4) first[0] = sobol, first[1] = independent;
+    last[0] = sobol, last[1] = independent;
+  }
+  const double sobol_rate = std::pow(last[0] / first[0], 1.0 / 4),
+               independent_rate = std::pow(last[1] / first[1], 1.0 / 4);
+  WARN("MSE per doubling of spp, 4 to 64: Sobol x" << sobol_rate << ", independent x" << independent_rate);
+  CHECK(sobol_rate <= 0.55);
 }
 
 TEST_CASE("furnace: rough white metal spheres render 1 with multiple-scattering compensation") {

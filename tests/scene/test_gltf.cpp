@@ -10,25 +10,13 @@
 #include "scene/gltf_loader.h"
 #include "scene/scene_features.h"
 #include "spectral/cie.h"
+#include "support/gltf_builder.h"
 #include "support/test_scenes.h"
 
 using namespace prism;
+using test::base64;
 
 namespace {
-
-std::string base64(const std::vector<unsigned char>& bytes) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t n = (uint32_t(bytes[i]) << 16) | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
-                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
-    out += table[(n >> 18) & 63];
-    out += table[(n >> 12) & 63];
-    out += i + 1 < bytes.size() ? table[(n >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? table[n & 63] : '=';
-  }
-  return out;
-}
 
 // One triangle (u16 indices), one emissive material, a camera and a point light, nested nodes.
 struct TriangleGltf {

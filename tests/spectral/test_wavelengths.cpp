@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "base/rng.h"
+#include "base/sampler.h"
 #include "spectral/cie.h"
 #include "spectral/wavelengths.h"
 #include "support/chi2.h"
@@ -48,7 +49,8 @@ template <int N>
 double estimate_y_integral(int paths, WavelengthSampling mode, bool terminate) {
   double sum = 0;
   for (int k = 0; k < paths; ++k) {
-    auto lambda = SampledWavelengths<N>::sample((k + 0.5f) / paths, mode);
+    // u.x stratified; u.y cycles the hero through the N strata, so the hero alone is stratified too.
+    auto lambda = SampledWavelengths<N>::sample({(k + 0.5f) / paths, (float(k % N) + 0.5f) / N}, mode);
     if (terminate) lambda.terminate_secondary();
     SampledSpectrum<N> y;
     for (int i = 0; i < N; ++i) y[i] = cie().y(lambda[i]);
@@ -69,7 +71,7 @@ TEST_CASE("terminating the secondary wavelengths keeps the estimator unbiased") 
   const double reference = cie().y_integral;
   // Only the hero lane remains: the stratification over the N lanes is lost, so use more paths.
   CHECK(estimate_y_integral<4>(1 << 16, WavelengthSampling::visible, true) == Approx(reference).epsilon(1e-3));
-  auto lambda = SampledWavelengths<4>::sample(0.3f);
+  auto lambda = SampledWavelengths<4>::sample({0.2f, 0.3f});
   const float hero_pdf = lambda.pdf()[0];
   lambda.terminate_secondary();
   CHECK(lambda.secondary_terminated());
@@ -79,12 +81,38 @@ TEST_CASE("terminating the secondary wavelengths keeps the estimator unbiased") 
   CHECK(lambda.pdf()[0] == Approx(hero_pdf / 4));
 }
 
-TEST_CASE("hero wavelengths are stratified: one per 1/N of the CDF") {
-  const auto lambda = SampledWavelengths<4>::sample(0.1f);
+TEST_CASE("hero wavelengths are stratified: one per 1/N of the CDF, u.y picks the hero") {
+  const auto lambda = SampledWavelengths<4>::sample({0.4f, 0.1f});
   CHECK(lambda[0] == Approx(visible_wavelength(0.1f)));
   CHECK(lambda[1] == Approx(visible_wavelength(0.35f)));
   CHECK(lambda[2] == Approx(visible_wavelength(0.6f)));
   CHECK(lambda[3] == Approx(visible_wavelength(0.85f)));
+  const auto rotated = SampledWavelengths<4>::sample({0.4f, 0.6f});  // the hero is the third value
+  CHECK(rotated[0] == Approx(visible_wavelength(0.6f)));
+  CHECK(rotated[1] == Approx(visible_wavelength(0.85f)));
+  CHECK(rotated[2] == Approx(visible_wavelength(0.1f)));
+}
+
+TEST_CASE("the Sobol sampler stratifies a pixel's M samples of N wavelengths over M x N strata") {
+  // The renderer's wavelength dimension (the second 2D request) at a non-power-of-2 count too:
+  // M = 24 samples of N = 4 wavelengths hold each of 64 strata of the CDF at most twice, and the
+  // first 16 samples each of the 64 exactly once.
+  for (const int spp : {16, 24}) {
+    Sampler sampler(3, SamplerKind::sobol);
+    std::vector<int> strata(64, 0);
+    for (int s = 0; s < spp; ++s) {
+      sampler.start_pixel_sample({5, 9}, s);
+      sampler.get_2d();  // pixel jitter
+      const auto lambda = SampledWavelengths<4>::sample(sampler.get_2d(), WavelengthSampling::uniform);
+      for (int i = 0; i < 4; ++i) ++strata[int((lambda[i] - kLambdaMin) / (kLambdaMax - kLambdaMin) * 64)];
+    }
+    for (int k = 0; k < 64; ++k) {
+      INFO(spp << " samples, stratum " << k);
+      if (spp == 16) REQUIRE(strata[k] == 1);
+      REQUIRE(strata[k] >= 1);
+      REQUIRE(strata[k] <= 2);
+    }
+  }
 }
 
 TEST_CASE("visible wavelength sampling follows its pdf (chi-square)") {
@@ -110,7 +138,7 @@ TEST_CASE("visible wavelength sampling follows its pdf (chi-square)") {
 
 TEST_CASE("wavelengths at the ends of the range are valid everywhere") {
   for (const float u : {0.f, 0x1p-24f, 0.5f, 1.f - 0x1p-24f}) {
-    const auto lambda = SampledWavelengths<4>::sample(u);
+    const auto lambda = SampledWavelengths<4>::sample({u, u});
     for (int i = 0; i < 4; ++i) {
       REQUIRE(lambda[i] >= kLambdaMin);
       REQUIRE(lambda[i] <= kLambdaMax);
