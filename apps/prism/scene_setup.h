@@ -16,10 +16,11 @@ struct SceneArgs {
   float env_rotate = 0, env_scale = 1;
   int width = 0, height = 0, camera = -1;
   GltfOptions gltf;
+  bool energy_compensation = true;  // off: --no-energy-compensation (single-scattering microfacets)
 };
 
 // The scene file (positional), --env / --env-map / --env-rotate / --env-scale, --width,
-// --height, --camera, and the glTF choices of add_gltf_options.
+// --height, --camera, --no-energy-compensation, and the glTF choices of add_gltf_options.
 void add_scene_options(CLI::App* cmd, SceneArgs& args);
 
 // --scene, --variant, --time and --animation.
