@@ -14,12 +14,21 @@
 // Per-lane reflectance (SpectralReflectance): KHR_materials_specular's colour, as the index η_λ
 // whose exact F0 is the coloured one (F90 stays s), and a thin film (KHR_materials_iridescence)
 // over the interface (compiled in with Extensions = true); without them every lane reflects alike.
+// Multiple scattering between the microfacets (Turquin 2019, "Practical multiple scattering
+// compensation for microfacet models"): the light a lossless rough interface loses, 1 − E(μ_o)
+// with E its single-scattering R + T albedo (SpecularAlbedo::interface, from the side of wo; for a
+// thin wall the white reflection albedo), is shared out in proportion to the lobes: f_ms = f / E(μ_o).
+// pdf and sampling are unchanged; `compensate` false leaves the single-scattering lobes. A
+// specular colour's lanes are compensated with their own indices η_λ; make_bsdf leaves a thin
+// film's lobes uncompensated (E of the filmed interface is not tabulated; dividing by the bare
+// one's lets a film over rough glass reflect up to 1.5% more than it receives).
 
 #include <optional>
 
 #include "materials/bsdf_sample.h"
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"
+#include "materials/specular_albedo.h"
 #include "materials/thin_film.h"
 
 namespace prism {
@@ -44,10 +53,12 @@ class DielectricBsdf {
  public:
   // eta = n_back / n_front (the index behind the shading normal over the one in front), one
   // value for all lanes: a λ-dependent index terminates the secondary wavelengths first.
-  DielectricBsdf(float alpha, float eta, const SampledSpectrum<N>& tint, bool thin, float transmission = 1.f,
-                 float specular = 1.f, const OptionalPart<Extensions, SpectralReflectance<N>>& lanes = {})
-      : distribution_(alpha),
-        smooth_(TrowbridgeReitz::effectively_smooth(alpha) || eta == 1),
+  DielectricBsdf(const TrowbridgeReitz& distribution, float eta, const SampledSpectrum<N>& tint, bool thin,
+                 float transmission = 1.f, float specular = 1.f, bool compensate = true,
+                 const OptionalPart<Extensions, SpectralReflectance<N>>& lanes = {})
+      : distribution_(distribution),
+        smooth_(distribution.effectively_smooth() || eta == 1),
+        compensate_(compensate && !smooth_),
         eta_(eta),
         tint_(tint),
         thin_(thin),
@@ -102,19 +113,14 @@ class DielectricBsdf {
   }
 
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
-    const auto h = half_vector(wo, wi);
-    if (!h) return SampledSpectrum<N>(0.f);
-    const SampledSpectrum<N> F = fresnel(dot(wo, h->wm));
-    const float D = distribution_.D(h->wm);
-    if (h->reflection) return F * (D * distribution_.G(wo, wi) / std::abs(4 * wi.z * wo.z));
-    const SampledSpectrum<N> T = tint_ * (SampledSpectrum<N>(1.f) - F);
-    if (thin_) {
-      const Vec3f mirrored(wi.x, wi.y, -wi.z);
-      return T * (transmission_ * D * distribution_.G(wo, mirrored) / std::abs(4 * wi.z * wo.z));
-    }
-    const float denom = sqr(dot(wi, h->wm) + dot(wo, h->wm) / h->eta_p) * wi.z * wo.z;
-    const float ft = D * distribution_.G(wo, wi) * std::abs(dot(wi, h->wm) * dot(wo, h->wm) / denom);
-    return T * (transmission_ * ft / sqr(h->eta_p));
+    if (!compensate_) return single_scattering(wo, wi);
+    if constexpr (Extensions)
+      if (lanes_ && lanes_->eta) {  // each lane's reflectance follows its own index: so does its E
+        SampledSpectrum<N> f = single_scattering(wo, wi);
+        for (int i = 0; i < N; ++i) f[i] /= single_scattering_albedo(wo.z, (*lanes_->eta)[i]);
+        return f;
+      }
+    return single_scattering(wo, wi) / single_scattering_albedo(wo.z, eta_);
   }
 
   float pdf(const Vec3f& wo, const Vec3f& wi) const {
@@ -179,6 +185,29 @@ class DielectricBsdf {
     return HalfVector{wm, reflection, eta_p};
   }
 
+  SampledSpectrum<N> single_scattering(const Vec3f& wo, const Vec3f& wi) const {
+    const auto h = half_vector(wo, wi);
+    if (!h) return SampledSpectrum<N>(0.f);
+    const SampledSpectrum<N> F = fresnel(dot(wo, h->wm));
+    const float D = distribution_.D(h->wm);
+    if (h->reflection) return F * (D * distribution_.G(wo, wi) / std::abs(4 * wi.z * wo.z));
+    const SampledSpectrum<N> T = tint_ * (SampledSpectrum<N>(1.f) - F);
+    if (thin_) {
+      const Vec3f mirrored(wi.x, wi.y, -wi.z);
+      return T * (transmission_ * D * distribution_.G(wo, mirrored) / std::abs(4 * wi.z * wo.z));
+    }
+    const float denom = sqr(dot(wi, h->wm) + dot(wo, h->wm) / h->eta_p) * wi.z * wo.z;
+    const float ft = D * distribution_.G(wo, wi) * std::abs(dot(wi, h->wm) * dot(wo, h->wm) / denom);
+    return T * (transmission_ * ft / sqr(h->eta_p));
+  }
+
+  // E(μ_o) of the white lossless lobes on wo's side (see the header).
+  float single_scattering_albedo(float mu, float eta) const {
+    const SpecularAlbedo& t = SpecularAlbedo::table();
+    if (thin_) return t.white(std::abs(mu), distribution_.alpha());
+    return t.interface(std::abs(mu), distribution_.alpha(), mu > 0 ? eta : 1 / eta);
+  }
+
   std::optional<BsdfSample<N>> sample_smooth(const Vec3f& wo, float uc) const {
     const SampledSpectrum<N> Rs = reflectance(wo);
     const auto t = transmission(wo, Rs);
@@ -195,7 +224,7 @@ class DielectricBsdf {
   float wall(float R) const { return thin_ && R < 1 ? R + sqr(1 - R) * R / (1 - R * R) : R; }
 
   TrowbridgeReitz distribution_;
-  bool smooth_;
+  bool smooth_, compensate_;
   float eta_;
   SampledSpectrum<N> tint_;
   bool thin_;

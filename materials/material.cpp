@@ -117,7 +117,21 @@ SurfaceInputs PbrMaterial::inputs(const SurfacePoint& at) const {
     in.diffuse_transmission_color = diffuse_transmission->color;
     scale_rgb(in.diffuse_transmission_color, diffuse_transmission->color_texture);
   }
+  in.anisotropy = anisotropy_strength;
+  if (anisotropic() && anisotropy_texture) in.anisotropy *= texel(anisotropy_texture, false)[2];
   return in;
+}
+
+Vec2f PbrMaterial::anisotropy_direction(const SurfacePoint& at) const {
+  Vec2f d(1, 0);
+  if (anisotropy_texture) {
+    const auto t = anisotropy_texture->lookup(at.uv[anisotropy_texture->texcoord], false);
+    const Vec2f texel(2 * t[0] - 1, 2 * t[1] - 1);
+    const float len = std::sqrt(texel.x * texel.x + texel.y * texel.y);
+    if (len > 0) d = Vec2f(texel.x / len, texel.y / len);
+  }
+  const float c = std::cos(anisotropy_rotation), s = std::sin(anisotropy_rotation);
+  return {c * d.x - s * d.y, s * d.x + c * d.y};
 }
 
 std::optional<Spectrum> Material::emission_at(const SurfacePoint& at) const {

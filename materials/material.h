@@ -58,6 +58,7 @@ struct SurfaceInputs {
   float iridescence = 0, iridescence_thickness = 0;  // nanometres
   float diffuse_transmission = 0;
   Rgb diffuse_transmission_color{1, 1, 1};
+  float anisotropy = 0;  // KHR_materials_anisotropy's strength × texture B
 };
 
 // The KHR material extensions' layers of a PbrMaterial, each a factor with its textures.
@@ -89,8 +90,9 @@ struct PbrMaterial {
   Rgb base_color{1, 1, 1};
   float alpha = 1;
   float metallic = 1, roughness = 1, transmission = 0;
-  float specular = 1;           // KHR_materials_specular's factor: scales the dielectric's reflectance
-  Rgb specular_color{1, 1, 1};  // KHR_materials_specular's colour: scales F0 (not F90)
+  float specular = 1;               // KHR_materials_specular's factor: scales the dielectric's reflectance
+  Rgb specular_color{1, 1, 1};      // KHR_materials_specular's colour: scales F0 (not F90)
+  bool energy_compensation = true;  // multiple scattering between microfacets added back (Turquin 2019)
   Dielectric dielectric;
   std::optional<MeasuredMetal> metal;                 // replaces the base-colour metal when set
   std::optional<Texture> base_color_texture;          // sRGB; RGB × base_color, A × alpha
@@ -103,8 +105,17 @@ struct PbrMaterial {
   std::optional<Sheen> sheen;
   std::optional<Iridescence> iridescence;
   std::optional<DiffuseTransmission> diffuse_transmission;
+  // KHR_materials_anisotropy: the roughness along the direction of anisotropy rises to
+  // mix(α, 1, strength²) (α across it). The direction is the mesh tangent turned by `rotation`
+  // (radians, towards the bitangent), or the texture's RG direction in tangent space turned so;
+  // the texture's B multiplies the strength. See anisotropy_direction() and World::interaction.
+  float anisotropy_strength = 0, anisotropy_rotation = 0;
+  std::optional<Texture> anisotropy_texture;  // linear; RG direction in [−1, 1], B strength
 
   SurfaceInputs inputs(const SurfacePoint& at) const;
+  bool anisotropic() const { return anisotropy_strength > 0; }
+  // The direction of anisotropy in tangent space (x along the tangent, y the bitangent), unit.
+  Vec2f anisotropy_direction(const SurfacePoint& at) const;
 
   static PbrMaterial glass(Dielectric d, float roughness = 0);
   static PbrMaterial metal_of(MeasuredMetal m, float roughness = 0);
@@ -177,6 +188,8 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
   const PbrMaterial& material = std::get<PbrMaterial>(m.kind);
   const SurfaceInputs p = material.inputs(at);
   const float alpha = sqr(p.roughness);
+  // Local x is the direction of anisotropy (the shading frame follows it): α_x = mix(α, 1, s²).
+  const TrowbridgeReitz distribution(p.anisotropy > 0 ? lerp(sqr(p.anisotropy), alpha, 1.f) : alpha, alpha);
   SampledSpectrum<N> n_front(1.f), color;  // the front medium's index; the base colour
   const RgbAlbedoSpectrum base(p.base_color);
   for (int i = 0; i < N; ++i) {
@@ -197,19 +210,20 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
     }
     n /= n_front, k /= n_front;
   }
+  const bool ms = material.energy_compensation;
   const bool layered = p.clearcoat > 0 || p.sheen_color.max() > 0;
   const bool film = p.iridescence > 0 && p.iridescence_thickness > 0;
   if (!layered && !film && p.specular_color == Rgb{1, 1, 1} && p.diffuse_transmission <= 0) {
     // The plain metallic-roughness model, compiled without the extensions' parts.
-    const ConductorBsdf<N> metal(alpha, n, k);
+    const ConductorBsdf<N> metal(distribution, n, k, ms);
     if (p.metallic >= 1) return metal;
     if constexpr (Dispersion)
       if (disperses(m, front)) lambda.terminate_secondary();
     const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
-    const DielectricBsdf<N> dielectric(alpha, eta, color, p.thin_walled, p.transmission, p.specular);
+    const DielectricBsdf<N> dielectric(distribution, eta, color, p.thin_walled, p.transmission, p.specular, ms);
     if (p.metallic <= 0 && p.transmission >= 1) return dielectric;
     if (p.metallic <= 0 && p.transmission <= 0 && p.specular <= 0) return DiffuseBsdf<N>(color);  // no specular layer
-    return PbrBsdf<N>(p.metallic, metal, dielectric, p.transmission, color, alpha, eta, p.specular);
+    return PbrBsdf<N>(p.metallic, metal, dielectric, p.transmission, color, distribution.alpha(), eta, p.specular, ms);
   }
 
   // The extensions: a thin film over the metal and the dielectric, a specular colour, diffuse
@@ -217,7 +231,7 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
   std::optional<FilmLanes<N>> film_lanes;
   if (film)
     film_lanes.emplace(ThinFilm{p.iridescence, p.iridescence_thickness, material.iridescence->ior}, lambda, n_front);
-  const ConductorBsdf<N, true> metal(alpha, n, k, p.metallic > 0 ? film_lanes : std::nullopt);
+  const ConductorBsdf<N, true> metal(distribution, n, k, ms, p.metallic > 0 ? film_lanes : std::nullopt);
   if constexpr (Dispersion)
     if (disperses(m, front)) lambda.terminate_secondary();
   const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
@@ -241,14 +255,18 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
         (*extras.lane_etas)[i] = std::max({reflecting[i], quarter_wave, 1 / quarter_wave});
       }
   }
-  const DielectricBsdf<N, true> dielectric(alpha, eta, color, p.thin_walled, p.transmission, p.specular, lanes);
+  // A film's interface stays single-scattering (see dielectric_bsdf.h), and so does its E below.
+  const bool dielectric_ms = ms && !film;
+  const DielectricBsdf<N, true> dielectric(distribution, eta, color, p.thin_walled, p.transmission, p.specular,
+                                           dielectric_ms, lanes);
   if (p.diffuse_transmission > 0) {
     extras.diffuse_transmission = p.diffuse_transmission;
     extras.transmitted_albedo = sample(RgbAlbedoSpectrum(p.diffuse_transmission_color), lambda);
   }
-  const PbrBsdf<N, true> pbr(p.metallic, metal, dielectric, p.transmission, color, alpha, eta, p.specular, extras);
+  const PbrBsdf<N, true> pbr(p.metallic, metal, dielectric, p.transmission, color, distribution.alpha(), eta,
+                             p.specular, dielectric_ms, extras);
   std::optional<typename LayeredBsdf<N>::Coat> coat;
-  if (p.clearcoat > 0) coat = {p.clearcoat, sqr(p.clearcoat_roughness), 1.5f / n_front[0], at.coat_normal};
+  if (p.clearcoat > 0) coat = {p.clearcoat, sqr(p.clearcoat_roughness), 1.5f / n_front[0], at.coat_normal, ms};
   std::optional<typename LayeredBsdf<N>::Sheen> sheen;
   if (p.sheen_color.max() > 0) sheen = {sample(RgbAlbedoSpectrum(p.sheen_color), lambda), sqr(p.sheen_roughness)};
   return LayeredBsdf<N>(pbr, coat, sheen);

@@ -43,10 +43,10 @@ class PbrBsdf {
     std::optional<SampledSpectrum<N>> lane_etas;
   };
 
-  // alpha, eta and specular must be those of `dielectric` (they pick its albedo E).
+  // alpha, eta, specular and compensated must be those of `dielectric` (they pick its albedo E).
   PbrBsdf(float metallic, const ConductorBsdf<N, Extensions>& metal, const DielectricBsdf<N, Extensions>& dielectric,
           float transmission, const SampledSpectrum<N>& albedo, float alpha, float eta, float specular,
-          const OptionalPart<Extensions, Extras>& extras = {})
+          bool compensated, const OptionalPart<Extensions, Extras>& extras = {})
       : metallic_(metallic),
         transmission_(transmission),
         metal_(metal),
@@ -55,14 +55,16 @@ class PbrBsdf {
         alpha_(alpha),
         eta_(eta),
         specular_(specular),
-        e_avg_(specular * SpecularAlbedo::table().average(alpha, eta)) {
+        compensated_(compensated),
+        e_avg_(specular * SpecularAlbedo::table().average(alpha, eta, compensated)) {
     if constexpr (Extensions) {
       if (!extras) return;
       extras_ = Parts{extras->diffuse_transmission, extras->transmitted_albedo, {}};
       if (!extras->lane_etas) return;
       extras_->lanes = LaneCoupling{*extras->lane_etas, {}};
       for (int i = 0; i < N; ++i)
-        extras_->lanes->e_avg[i] = specular * SpecularAlbedo::table().average(alpha, (*extras->lane_etas)[i]);
+        extras_->lanes->e_avg[i] =
+            specular * SpecularAlbedo::table().average(alpha, (*extras->lane_etas)[i], compensated);
     }
   }
 
@@ -137,7 +139,7 @@ class PbrBsdf {
     return 0.f;
   }
 
-  float E(float mu) const { return specular_ * SpecularAlbedo::table().E(std::abs(mu), alpha_, eta_); }
+  float E(float mu) const { return specular_ * SpecularAlbedo::table().E(std::abs(mu), alpha_, eta_, compensated_); }
   // The coupling factor (1 − E(μ_o))(1 − E(μ_i)) / (1 − E_avg): one value, or one per lane.
   float scalar_coupling(const Vec3f& wo, const Vec3f& wi) const {
     return e_avg_ < 1 ? (1 - E(wo.z)) * (1 - E(wi.z)) / (1 - e_avg_) : 0.f;
@@ -151,7 +153,7 @@ class PbrBsdf {
       SampledSpectrum<N> c;
       for (int i = 0; i < N; ++i) {
         const auto lane_E = [&](float mu) {
-          return specular_ * SpecularAlbedo::table().E(std::abs(mu), alpha_, lanes.eta[i]);
+          return specular_ * SpecularAlbedo::table().E(std::abs(mu), alpha_, lanes.eta[i], compensated_);
         };
         c[i] = lanes.e_avg[i] < 1 ? (1 - lane_E(wo.z)) * (1 - lane_E(wi.z)) / (1 - lanes.e_avg[i]) : 0.f;
       }
@@ -204,7 +206,9 @@ class PbrBsdf {
   ConductorBsdf<N, Extensions> metal_;
   DielectricBsdf<N, Extensions> dielectric_;
   SampledSpectrum<N> albedo_;
-  float alpha_, eta_, specular_, e_avg_;
+  float alpha_, eta_, specular_;
+  bool compensated_;
+  float e_avg_;
   [[no_unique_address]] OptionalPart<Extensions, Parts> extras_;
 };
 
@@ -224,8 +228,9 @@ template <int N>
 class LayeredBsdf {
  public:
   struct Coat {
-    float weight, alpha, eta;  // clearcoat factor, GGX α, index relative to the front medium
+    float weight, alpha, eta;  // clearcoat factor, GGX α (isotropic), index relative to the front medium
     Vec3f normal;              // in the shading frame
+    bool compensated = true;   // multiple scattering added back, as the base's (Turquin 2019)
   };
   struct Sheen {
     SampledSpectrum<N> color;
@@ -234,7 +239,9 @@ class LayeredBsdf {
 
   LayeredBsdf(const PbrBsdf<N, true>& base, const std::optional<Coat>& coat, const std::optional<Sheen>& sheen)
       : base_(base),
-        coat_(coat ? coat->alpha : 0, coat ? coat->eta : 1, SampledSpectrum<N>(1.f), false, 0),
+        coat_(TrowbridgeReitz(coat ? coat->alpha : 0), coat ? coat->eta : 1, SampledSpectrum<N>(1.f), false, 0, 1,
+              coat && coat->compensated),
+        coat_compensated_(coat && coat->compensated),
         coat_weight_(coat ? coat->weight : 0),
         coat_alpha_(coat ? coat->alpha : 0),
         coat_eta_(coat ? std::max(coat->eta, 1.f) : 1),
@@ -314,7 +321,7 @@ class LayeredBsdf {
   // The coat's albedo towards w (none from below the coat's own horizon).
   float coat_E(const Vec3f& w) const {
     const float mu = (coat_tilted_ ? dot(w.z < 0 ? -w : w, coat_frame_.z) : std::abs(w.z));
-    return mu > 0 ? coat_weight_ * SpecularAlbedo::table().E(mu, coat_alpha_, coat_eta_) : 0.f;
+    return mu > 0 ? coat_weight_ * SpecularAlbedo::table().E(mu, coat_alpha_, coat_eta_, coat_compensated_) : 0.f;
   }
   float sheen_E(float mu) const { return sheen_weight_ * SheenAlbedo::table().E(std::abs(mu), sheen_alpha_); }
   float coat_scale(const Vec3f& wo, const Vec3f& wi) const {
@@ -344,6 +351,7 @@ class LayeredBsdf {
 
   PbrBsdf<N, true> base_;
   DielectricBsdf<N> coat_;
+  bool coat_compensated_;
   float coat_weight_, coat_alpha_, coat_eta_;
   bool coat_tilted_;
   Frame coat_frame_;

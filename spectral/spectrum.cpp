@@ -51,6 +51,9 @@ RgbIlluminantSpectrum::RgbIlluminantSpectrum(Rgb rgb) : shape(rgb), illuminant(&
 
 float RgbIlluminantSpectrum::operator()(float lambda) const { return shape(lambda) * (*illuminant)(lambda); }
 
+RgbAbsorptionSpectrum::RgbAbsorptionSpectrum(Rgb t, float distance)
+    : transmittance(t), inv_distance(1 / std::max(distance, 1e-30f)) {}
+
 DenselySampledSpectrum densely_sampled(const Spectrum& s) {
   std::vector<float> values;
   for (int lambda = int(kLambdaMin); lambda <= int(kLambdaMax); ++lambda) values.push_back(evaluate(s, float(lambda)));

@@ -7,7 +7,10 @@
 //   RgbAlbedoSpectrum           reflectance from RGB in [0,1]: bounded to [0,1]
 //   RgbUnboundedSpectrum        any non-negative RGB (e.g. absorption, scale × bounded shape)
 //   RgbIlluminantSpectrum       emission from RGB: unbounded shape × the colour space's white (D65)
+//   RgbAbsorptionSpectrum       absorption coefficient whose transmittance over a distance is an RGB colour
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <variant>
 #include <vector>
@@ -91,8 +94,19 @@ struct RgbIlluminantSpectrum {
   const DenselySampledSpectrum* illuminant;  // D65 with luminance Y = 1
 };
 
+// σ_a(λ) = −ln T(λ) / d, T the reflectance-like upsampling of `transmittance` (RgbAlbedoSpectrum):
+// a medium whose Beer–Lambert transmittance exp(−σ_a d) over the distance d is exactly T(λ), so
+// white light turns into that colour up to the upsampling's round trip (KHR_materials_volume's
+// attenuationColor at attenuationDistance). Smooth and non-negative since T is; T ≥ 1e-30.
+struct RgbAbsorptionSpectrum {
+  RgbAbsorptionSpectrum(Rgb transmittance, float distance);
+  float operator()(float lambda) const { return -std::log(std::max(transmittance(lambda), 1e-30f)) * inv_distance; }
+  RgbAlbedoSpectrum transmittance;
+  float inv_distance;
+};
+
 using Spectrum = std::variant<ConstantSpectrum, TabulatedSpectrum, DenselySampledSpectrum, BlackbodySpectrum,
-                              RgbAlbedoSpectrum, RgbUnboundedSpectrum, RgbIlluminantSpectrum>;
+                              RgbAlbedoSpectrum, RgbUnboundedSpectrum, RgbIlluminantSpectrum, RgbAbsorptionSpectrum>;
 
 inline float evaluate(const Spectrum& s, float lambda) {
   return std::visit([lambda](const auto& kind) { return kind(lambda); }, s);

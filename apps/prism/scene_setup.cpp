@@ -107,6 +107,9 @@ void add_scene_options(CLI::App* cmd, SceneArgs& args) {
   cmd->add_option("--max-memory", args.max_memory_gb,
                   "Refuse scenes and images estimated to need more than GB gigabytes (default: physical memory)")
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("!--no-energy-compensation", args.energy_compensation,
+                "Leave out the light scattered more than once between microfacets (as single-scattering "
+                "renderers do)");
 }
 
 void add_gltf_options(CLI::App* cmd, GltfOptions& options) {
@@ -202,6 +205,9 @@ PreparedScene prepare_scene(const SceneArgs& args, bool keep_file) {
   Scene& scene = p.gltf->scene();
   if (env) scene.environment = RgbIlluminantSpectrum(*env);
   scene.environment_map = std::move(env_map);
+  if (!args.energy_compensation)
+    for (Material& m : scene.materials)
+      if (auto* pbr = std::get_if<PbrMaterial>(&m.kind)) pbr->energy_compensation = false;
   log::info(
       "loaded {} in {:.2f} s: {} triangles in {} instances, {} materials, {} point, {} spot and {} "
       "directional lights",

@@ -16,7 +16,8 @@ struct SceneArgs {
   float env_rotate = 0, env_scale = 1;
   int width = 0, height = 0, camera = -1;
   GltfOptions gltf;
-  double max_memory_gb = 0;  // 0: the machine's physical memory
+  double max_memory_gb = 0;         // 0: the machine's physical memory
+  bool energy_compensation = true;  // off: --no-energy-compensation (single-scattering microfacets)
 };
 
 // Bytes Prism budgets per pixel of the image (film, output copies) and per mesh instance (scene,
@@ -29,7 +30,7 @@ const CLI::Validator& positive_count();
 const CLI::Validator& seed_value();
 
 // The scene file (positional), --env / --env-map / --env-rotate / --env-scale, --width,
-// --height, --camera, and the glTF choices of add_gltf_options.
+// --height, --camera, --no-energy-compensation, and the glTF choices of add_gltf_options.
 void add_scene_options(CLI::App* cmd, SceneArgs& args);
 
 // --scene, --variant, --time, --animation and --allow-external-paths.

@@ -41,7 +41,8 @@ struct AreaLight {
   template <int N>
   SampledSpectrum<N> radiance(const Vec3f& b, const SampledWavelengths<N>& lambda) const {
     SurfacePoint at;
-    if (material->emission_texture) at.uv[material->emission_texture->texcoord] = uv[0] * b.x + uv[1] * b.y + uv[2] * b.z;
+    if (material->emission_texture)
+      at.uv[material->emission_texture->texcoord] = uv[0] * b.x + uv[1] * b.y + uv[2] * b.z;
     return material->emitted(at, lambda);
   }
 

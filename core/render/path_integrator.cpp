@@ -74,7 +74,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     const bool entering = si->front_face();
     const Dielectric* front = Media ? media.front_dielectric(material, entering) : nullptr;
     const Bsdf<N> bsdf = make_bsdf<N, Dispersion>(material, si->at, lambda, front);
-    const Frame frame = Frame::from_z(si->ns);
+    const Frame frame = si->shading_frame();
     const Vec3f wo = frame.to_local(si->wo);
     if (options.next_event && !bsdf_is_specular(bsdf))
       L += beta * sample_direct(world, *si, frame, bsdf, wo, lambda, sampler, counters);

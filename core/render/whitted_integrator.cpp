@@ -52,7 +52,7 @@ SampledSpectrum<N> scatter(const Context& c, const SurfaceInteraction& si, const
   const bool entering = si.front_face();
   SampledWavelengths<N> bsdf_lambda = lambda;  // a dispersive interface only reaches here one wavelength at a time
   const Bsdf<N> bsdf = make_bsdf(material, si.at, bsdf_lambda, media.front_dielectric(material, entering));
-  const Frame frame = Frame::from_z(si.ns);
+  const Frame frame = si.shading_frame();
   const Vec3f wo = frame.to_local(si.wo);
   SampledSpectrum<N> L(0.f);
   if (!bsdf_is_specular(bsdf)) L += direct_light(c, si, frame, bsdf, wo, lambda);

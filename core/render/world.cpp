@@ -168,28 +168,43 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
     if (len > 0 && std::isfinite(len)) si.ns = face_forward(ns / len, si.n);
   }
   const Material& material = *si.material;
-  if (m.tangents.empty()) return si;
-  // Tangent-space normal map (glTF §3.9.3): n = normalize(T x + B y + N z), B = sign · N × T,
-  // about the interpolated normal; the base's, and a clear coat's own (KHR_materials_clearcoat).
+  const auto* pbr = std::get_if<PbrMaterial>(&material.kind);
+  const bool anisotropic = pbr && pbr->anisotropic();
+  const bool coat_map = pbr && pbr->clearcoat && pbr->clearcoat->normal_texture;
+  if (m.tangents.empty() || !(material.normal_texture || anisotropic || coat_map)) return si;
+  // The tangent frame (glTF §3.9.3): T, and B = sign · N × T, both ⊥ the normal n they turn about.
+  const auto t4 = interpolate(m.tangents, m, hit.prim, b);
+  const Vec3f t_world(instance.to_world.vector(Vec3d(t4[0], t4[1], t4[2])));
+  const float sign = (t4[3] < 0) != mirrored ? -1.f : 1.f;
+  const auto tangent_about = [&](const Vec3f& n) -> std::optional<Vec3f> {
+    const Vec3f t = t_world - n * dot(n, t_world);
+    if (length_squared(t) == 0) return std::nullopt;
+    return normalize(t);
+  };
+  // Tangent-space normal map: n = normalize(T x + B y + N z) about the interpolated normal; the
+  // base's, and a clear coat's own (KHR_materials_clearcoat).
   const Vec3f ns = si.ns;
   const auto map_normal = [&](const Texture& texture, float scale) -> std::optional<Vec3f> {
-    const auto t4 = interpolate(m.tangents, m, hit.prim, b);
-    const Vec3f t_world(instance.to_world.vector(Vec3d(t4[0], t4[1], t4[2])));
-    const Vec3f t = t_world - ns * dot(ns, t_world);
     const auto c = texture.lookup(si.at.uv[texture.texcoord], false);
     const Vec3f local((2 * c[0] - 1) * scale, (2 * c[1] - 1) * scale, 2 * c[2] - 1);
-    if (length_squared(t) == 0 || length_squared(local) == 0) return std::nullopt;
-    const Vec3f tn = normalize(t);
-    const Vec3f bn = cross(ns, tn) * ((t4[3] < 0) != mirrored ? -1.f : 1.f);
-    const Vec3f mapped = tn * local.x + bn * local.y + ns * local.z;
+    const auto tn = tangent_about(ns);
+    if (!tn || length_squared(local) == 0) return std::nullopt;
+    const Vec3f mapped = *tn * local.x + cross(ns, *tn) * sign * local.y + ns * local.z;
     if (length_squared(mapped) == 0 || !is_finite(mapped)) return std::nullopt;
     return face_forward(normalize(mapped), si.n);
   };
   if (material.normal_texture)
     if (const auto n = map_normal(*material.normal_texture, material.normal_scale)) si.ns = *n;
-  if (const auto* p = std::get_if<PbrMaterial>(&material.kind); p && p->clearcoat && p->clearcoat->normal_texture)
-    if (const auto n = map_normal(*p->clearcoat->normal_texture, p->clearcoat->normal_scale))
-      si.at.coat_normal = Frame::from_z(si.ns).to_local(*n);  // in the shading frame the BSDF sees
+  if (anisotropic)
+    // KHR_materials_anisotropy: the direction T d.x + B d.y, in the plane of the (mapped) normal.
+    if (const auto tn = tangent_about(si.ns)) {
+      const Vec2f d = pbr->anisotropy_direction(si.at);
+      const Vec3f a = *tn * d.x + cross(si.ns, *tn) * sign * d.y;
+      if (length_squared(a) > 0 && is_finite(a)) si.tangent = normalize(a);
+    }
+  if (coat_map)
+    if (const auto n = map_normal(*pbr->clearcoat->normal_texture, pbr->clearcoat->normal_scale))
+      si.at.coat_normal = si.shading_frame().to_local(*n);  // in the frame the BSDF sees
   return si;
 }
 

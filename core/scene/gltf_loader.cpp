@@ -22,6 +22,7 @@ const std::map<std::string, const char*> kSupportedExtensions = {
     {"KHR_materials_volume", "closed volumes with Beer-Lambert absorption; thickness 0 is a thin wall"},
     {"KHR_materials_dispersion", "index varying with wavelength (Abbe number)"},
     {"KHR_materials_specular", "specular strength and colour: the F0 of an exact Fresnel curve per wavelength"},
+    {"KHR_materials_anisotropy", "anisotropic GGX along the tangent frame (strength, rotation, direction texture)"},
     {"KHR_texture_transform", "texture coordinate offset, rotation and scale"},
     {"KHR_mesh_quantization", "integer and normalized vertex attributes"},
     {"KHR_materials_variants", "material sets, chosen with --variant NAME"},

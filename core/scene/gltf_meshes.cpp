@@ -134,7 +134,13 @@ std::optional<Mesh> GltfLoader::convert_primitive(const tinygltf::Primitive& pri
   mesh.indices = triangle_list(std::move(vertices), prim.mode);
   mesh.material = material_index(variant_material(prim, variant_), context);
   const Material& material = scene_.materials[mesh.material];
-  if (material.normal_texture && mesh.tangents.empty()) generate_tangents(mesh, material.normal_texture->texcoord);
+  const auto* pbr = std::get_if<PbrMaterial>(&material.kind);
+  if (mesh.tangents.empty()) {  // normal maps and anisotropy need the tangent frame
+    if (material.normal_texture)
+      generate_tangents(mesh, material.normal_texture->texcoord);
+    else if (pbr && pbr->anisotropic())
+      generate_tangents(mesh, pbr->anisotropy_texture ? pbr->anisotropy_texture->texcoord : 0);
+  }
   return mesh;
 }
 

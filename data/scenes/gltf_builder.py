@@ -101,6 +101,26 @@ def uv_sphere(centre, radius, segments):
                 idx += [a, c, d]
     return {"positions": pos, "normals": nrm, "indices": idx}
 
+def turned_disk(centre, radius, segments):
+    """Flat disk facing +y, as if turned on a lathe: its tangents run around the centre (the
+    direction of KHR_materials_anisotropy's brushing)."""
+    pos, nrm, tan, idx = [centre], [(0.0, 1.0, 0.0)], [(1.0, 0.0, 0.0, 1.0)], []
+    for j in range(segments):
+        ph = 2.0 * math.pi * j / segments
+        pos.append(add(centre, (radius * math.cos(ph), 0.0, radius * math.sin(ph))))
+        nrm.append((0.0, 1.0, 0.0))
+        tan.append((-math.sin(ph), 0.0, math.cos(ph), 1.0))
+        idx += [0, 1 + (j + 1) % segments, 1 + j]
+    return {"positions": pos, "normals": nrm, "tangents": tan, "indices": idx}
+
+def with_longitude_tangents(sphere):
+    """A uv_sphere's tangents along its latitude circles (brushed around the vertical axis)."""
+    tan = []
+    for n in sphere["normals"]:
+        t = (-n[2], 0.0, n[0])
+        tan.append(normalize(t) + (1.0,) if dot(t, t) > 1e-12 else (1.0, 0.0, 0.0, 1.0))
+    return dict(sphere, tangents=tan)
+
 def prism(base_centre, side, length, yaw_deg=0.0):
     """Equilateral triangular prism lying on one rectangular face: triangle of
     edge `side` in the local xy plane, extruded `length` along local z, then
@@ -134,6 +154,13 @@ def metal(name, rgb, roughness, catalogue=None):
         "baseColorFactor": list(rgb) + [1.0], "metallicFactor": 1.0, "roughnessFactor": roughness}}
     if catalogue:
         m["extras"] = {"prism": {"metal": catalogue}}
+    return m
+
+def brushed(material, strength, rotation=0.0):
+    """The material with KHR_materials_anisotropy (brushed along the mesh tangents)."""
+    m = dict(material)
+    m["extensions"] = dict(m.get("extensions", {}),
+                           KHR_materials_anisotropy={"anisotropyStrength": strength, "anisotropyRotation": rotation})
     return m
 
 def glass(name, ior, abbe, thickness, catalogue=None):
@@ -186,6 +213,8 @@ def build_gltf(objects, camera, generator, copyright, scene_name, root=None):
                     "NORMAL": accessor(mesh["normals"], "f", 5126, "VEC3", 34962)},
                 "indices": accessor(mesh["indices"], "I", 5125, "SCALAR", 34963),
                 "material": mat_index[mat["name"]], "mode": 4}
+        if "tangents" in mesh:  # xyz and the bitangent's sign, for anisotropy or normal maps
+            prim["attributes"]["TANGENT"] = accessor(mesh["tangents"], "f", 5126, "VEC4", 34962)
         g["meshes"].append({"name": name, "primitives": [prim]})
         g["nodes"].append({"name": name, "mesh": len(g["meshes"]) - 1})
 

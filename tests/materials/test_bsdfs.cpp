@@ -14,7 +14,7 @@ TEST_CASE("smooth dielectric: R + T = 1 over angles, indices and wavelengths, wi
     for (float c = -1; c <= 1; c += 0.05f) {
       if (c == 0) continue;
       const Vec3f wo(std::sqrt(std::max(0.f, 1 - c * c)), 0, c);
-      const DielectricBsdf<4> bsdf(0.f, eta, SampledSpectrum<4>(1.f), false);
+      const DielectricBsdf<4> bsdf(TrowbridgeReitz(0.f), eta, SampledSpectrum<4>(1.f), false);
       const float R = bsdf.reflectance(wo)[0];
       const auto t = bsdf.transmission(wo);
       const float T = t ? t->weight[0] * sqr(t->eta) : 0.f;  // undo the 1/η² radiance scaling
@@ -32,7 +32,7 @@ TEST_CASE("smooth dielectric: R + T = 1 over angles, indices and wavelengths, wi
       }
     }
   // Thin wall: the sheet's R' + T' = 1 too, and light goes straight through.
-  const DielectricBsdf<4> thin(0.f, 1.5f, SampledSpectrum<4>(1.f), true);
+  const DielectricBsdf<4> thin(TrowbridgeReitz(0.f), 1.5f, SampledSpectrum<4>(1.f), true);
   const Vec3f wo = normalize(Vec3f(0.5f, 0.1f, 0.8f));
   const auto t = thin.transmission(wo);
   REQUIRE(t);
@@ -43,7 +43,7 @@ TEST_CASE("smooth dielectric: R + T = 1 over angles, indices and wavelengths, wi
 
 TEST_CASE("refraction is reciprocal: the same share both ways, radiance weights differ by eta squared") {
   for (float eta : {1.33f, 1.5f, 2.42f}) {
-    const DielectricBsdf<1> bsdf(0.f, eta, SampledSpectrum<1>(1.f), false);
+    const DielectricBsdf<1> bsdf(TrowbridgeReitz(0.f), eta, SampledSpectrum<1>(1.f), false);
     const Vec3f wo = normalize(Vec3f(0.4f, 0.2f, 0.7f));  // outside (n = 1)
     const auto t = bsdf.transmission(wo);
     REQUIRE(t);
@@ -96,7 +96,7 @@ TEST_CASE("the chi-square test accepts a sampler with its own pdf and rejects it
 TEST_CASE("smooth conductor reflects the exact Fresnel reflectance per wavelength") {
   SampledSpectrum<4> n, k;
   for (int i = 0; i < 4; ++i) n[i] = 0.2f + 0.3f * i, k[i] = 3.f + i;
-  const ConductorBsdf<4> bsdf(0.f, n, k);
+  const ConductorBsdf<4> bsdf(TrowbridgeReitz(0.f), n, k);
   const Vec3f wo = normalize(Vec3f(0.6f, 0, 0.8f));
   const auto s = bsdf.sample_f(wo, 0.5f, {});
   REQUIRE(s);

@@ -7,6 +7,7 @@
 //   * χ² goodness of fit of each non-delta lobe's sampling against its pdf.
 // Tolerances are 4 standard errors of the estimates (from their sample variance), not tuned.
 
+#include <bit>
 #include <catch2/catch.hpp>
 #include <functional>
 
@@ -27,6 +28,9 @@ struct Case {
   bool lossless = false;
   float eta = 1;       // relative index of a solid dielectric (transmission scales radiance by 1/η'²)
   bool sharp = false;  // lobes of roughness < 0.2 are too narrow for uniform sampling to resolve
+  // What the albedo may exceed 1 by beyond noise: anisotropic lobes' multiple-scattering
+  // compensation uses the isotropic table at √(α_x α_y) (as Cycles does), an approximation.
+  float slack = 0;
 };
 
 SampledWavelengths<N> wavelengths() { return SampledWavelengths<N>::sample({0.48f, 0.37f}); }
@@ -60,7 +64,11 @@ DiffuseTransmission diffuse_transmission(float factor, Rgb color) {
 
 // The KHR extensions' lobes (clearcoat, sheen, specular colour, thin film, diffuse transmission),
 // each over a base that leaves room to see it, at the given roughness (the layer's and the base's).
-std::vector<Case> layered_cases(float roughness) {
+std::vector<Case> layered_cases(float roughness, bool compensated = true) {
+  const auto of = [compensated](PbrMaterial m) {
+    m.energy_compensation = compensated;
+    return bsdf_of(m);
+  };
   const std::string r = " roughness " + std::to_string(roughness).substr(0, 4);
   const bool sharp = roughness < 0.2f;
   const auto plastic = [](Rgb color, float rough) { return PbrMaterial::plastic(color, rough); };
@@ -69,28 +77,28 @@ std::vector<Case> layered_cases(float roughness) {
                [=] {
                  PbrMaterial m = plastic({0.8f, 0.1f, 0.1f}, 0.5f);
                  m.clearcoat = clearcoat(1, roughness);
-                 return bsdf_of(m);
+                 return of(m);
                },
                false, 1, sharp});
   c.push_back({"half clearcoat over rough gold" + r,
                [=] {
                  PbrMaterial m = PbrMaterial::metal_of(Rgb{1, 0.78f, 0.34f}, 0.6f);
                  m.clearcoat = clearcoat(0.5f, roughness);
-                 return bsdf_of(m);
+                 return of(m);
                },
                false, 1, sharp});
   c.push_back({"sheen over white plastic" + r,
                [=] {
                  PbrMaterial m = plastic({1, 1, 1}, 0.7f);
                  m.sheen = sheen({1, 0.7f, 0.4f}, roughness);
-                 return bsdf_of(m);
+                 return of(m);
                },
                false, 1, false});
   c.push_back({"specular colour (3, 0.5, 1) plastic" + r,
                [=] {
                  PbrMaterial m = plastic({1, 1, 1}, roughness);
                  m.specular_color = {3, 0.5f, 1};
-                 return bsdf_of(m);
+                 return of(m);
                },
                false, 1, sharp});
   // A film of higher index than the base (n_f² > η) over a white diffuse reflects up to 0.9% more
@@ -100,28 +108,37 @@ std::vector<Case> layered_cases(float roughness) {
                [=] {
                  PbrMaterial m = plastic({1, 1, 1}, roughness);
                  m.iridescence = iridescence(1, 1.3f, 450);
-                 return bsdf_of(m);
+                 return of(m);
                },
                false, 1, sharp});
   c.push_back({"thin film n 1.8, 300 nm, over Cu" + r,
                [=] {
                  PbrMaterial m = PbrMaterial::metal_of(MaterialCatalogue::standard().metal("Cu"), roughness);
                  m.iridescence = iridescence(1, 1.8f, 300);
-                 return bsdf_of(m);
+                 return of(m);
                },
                false, 1, sharp});
   c.push_back({"thin film over glass" + r,
                [=] {
                  PbrMaterial m = PbrMaterial::glass(Dielectric(ConstantIor{1.5f}), roughness);
                  m.iridescence = iridescence(0.7f, 1.33f, 500);
-                 return bsdf_of(m);
+                 return of(m);
                },
                false, 1.5f, sharp});
+  // The layers over the compensated, anisotropic base lobes (the coat stays its own isotropic GGX).
+  c.push_back({"clearcoat over brushed Al" + r,
+               [=] {
+                 PbrMaterial m = PbrMaterial::metal_of(MaterialCatalogue::standard().metal("Al"), 0.4f);
+                 m.anisotropy_strength = 0.8f;
+                 m.clearcoat = clearcoat(0.7f, roughness);
+                 return of(m);
+               },
+               false, 1, sharp, 0.03f});
   c.push_back({"diffuse transmission 0.6" + r,
                [=] {
                  PbrMaterial m = plastic({0.9f, 0.9f, 0.9f}, roughness);
                  m.diffuse_transmission = diffuse_transmission(0.6f, {1, 0.6f, 0.3f});
-                 return bsdf_of(m);
+                 return of(m);
                },
                false, 1, sharp});
   c.push_back({"all layers" + r,
@@ -133,7 +150,7 @@ std::vector<Case> layered_cases(float roughness) {
                  m.specular_color = {1.5f, 1, 0.5f};
                  m.iridescence = iridescence(0.5f, 1.6f, 250);
                  m.diffuse_transmission = diffuse_transmission(0.3f, {1, 1, 1});
-                 return bsdf_of(m);
+                 return of(m);
                },
                false, 1, sharp});
   return c;
@@ -187,6 +204,33 @@ std::vector<Case> cases() {
                    return bsdf_of(m);
                  },
                  false, 1.5f, sharp});
+  }
+  // KHR_materials_anisotropy: the direction of anisotropy along local x (α_x = mix(α, 1, s²)).
+  const auto brushed = [](PbrMaterial m, float strength) {
+    m.anisotropy_strength = strength;
+    return m;
+  };
+  // At roughness 0.05 a strong anisotropy makes an arc 0.1° wide, finer than the χ² cells'
+  // integration resolves: there the strength is 0.1 (α_x five times α_y).
+  for (float roughness : {0.05f, 0.3f, 1.f}) {
+    const std::string r = " roughness " + std::to_string(roughness).substr(0, 4);
+    const bool sharp = roughness < 0.2f;
+    const float strong = sharp ? 0.1f : 0.8f;
+    c.push_back({"anisotropic Al" + r,
+                 [=] {
+                   return bsdf_of(
+                       brushed(PbrMaterial::metal_of(MaterialCatalogue::standard().metal("Al"), roughness), strong));
+                 },
+                 false, 1, sharp, 0.03f});
+    c.push_back(
+        {"anisotropic glass 1.5" + r,
+         [=] { return bsdf_of(brushed(PbrMaterial::glass(Dielectric(ConstantIor{1.5f}), roughness), strong / 2)); },
+         false, 1.5f, sharp, 0.03f});
+    c.push_back({"anisotropic white plastic" + r,
+                 [=] {
+                   return bsdf_of(brushed(PbrMaterial::plastic(Rgb{1, 1, 1}, roughness), strong));
+                 },
+                 false, 1, sharp, 0.03f});
   }
   c.push_back({"white plastic smooth", [] { return bsdf_of(PbrMaterial::plastic(Rgb{1, 1, 1}, 0)); }});
   for (float roughness : {0.f, 0.05f, 0.3f, 1.f})
@@ -260,7 +304,7 @@ TEST_CASE("every BSDF conserves energy: albedo <= 1 by its own and by uniform sa
         INFO(c.name << ", cos θo " << cos_o << ", lane " << i << ": albedo " << own.mean[i] << " ± "
                     << own.standard_error[i]);
         REQUIRE(std::isfinite(own.mean[i]));
-        CHECK(own.mean[i] <= 1 + 4 * own.standard_error[i] + 1e-6f);
+        CHECK(own.mean[i] <= 1 + 4 * own.standard_error[i] + 1e-6f + c.slack);
         if (c.lossless) CHECK(own.mean[i] == Approx(1).margin(4 * own.standard_error[i] + 1e-5));
       }
       if (has_delta || c.sharp) continue;  // uniform directions (almost) never meet such lobes
@@ -269,7 +313,7 @@ TEST_CASE("every BSDF conserves energy: albedo <= 1 by its own and by uniform sa
         INFO(c.name << ", cos θo " << cos_o << ", lane " << i << ": own " << own.mean[i] << " ± "
                     << own.standard_error[i] << ", uniform " << uni.mean[i] << " ± " << uni.standard_error[i]);
         const float se = std::sqrt(sqr(own.standard_error[i]) + sqr(uni.standard_error[i]));
-        CHECK(uni.mean[i] <= 1 + 4 * uni.standard_error[i] + 1e-6f);
+        CHECK(uni.mean[i] <= 1 + 4 * uni.standard_error[i] + 1e-6f + c.slack);
         CHECK(own.mean[i] == Approx(uni.mean[i]).margin(4 * se + 1e-6));
       }
     }
@@ -318,7 +362,9 @@ TEST_CASE("the glTF base is energy-consistent: a white plastic reflects everythi
 TEST_CASE("the extensions' lobes are reciprocal: f(wo, wi) = f(wi, wo)") {
   Rng rng(29, 0);
   for (float roughness : {0.05f, 0.3f, 1.f})
-    for (const Case& c : layered_cases(roughness)) {
+    // Single scattering: the layering is reciprocal; Turquin's compensation of the base lobes
+    // (a factor in μ_o alone) is not, by design, and is checked for energy elsewhere.
+    for (const Case& c : layered_cases(roughness, false)) {
       if (c.eta != 1) continue;  // refraction scales radiance by η²: not symmetric by design
       const Bsdf<N> b = c.make();
       for (int k = 0; k < 200; ++k) {
@@ -338,7 +384,11 @@ TEST_CASE("the extensions at their neutral values reproduce the base bit for bit
   for (float roughness : {0.f, 0.3f, 1.f})
     for (const PbrMaterial& base : {PbrMaterial::plastic(Rgb{0.5f, 0.7f, 0.2f}, roughness),
                                     PbrMaterial::metal_of(MaterialCatalogue::standard().metal("Au"), roughness),
-                                    PbrMaterial::glass(Dielectric(ConstantIor{1.5f}), roughness)}) {
+                                    PbrMaterial::glass(Dielectric(ConstantIor{1.5f}), roughness), [&] {
+                                      PbrMaterial brushed = PbrMaterial::metal_of(Rgb{0.9f, 0.9f, 0.9f}, roughness);
+                                      brushed.anisotropy_strength = 0.6f;
+                                      return brushed;
+                                    }()}) {
       PbrMaterial neutral = base;
       neutral.clearcoat = clearcoat(0, 0.5f);
       neutral.sheen = sheen({0, 0, 0}, 0.5f);
@@ -364,4 +414,93 @@ TEST_CASE("the extensions at their neutral values reproduce the base bit for bit
         if (sa) CHECK((same(sa->f, sb->f) && sa->wi == sb->wi && sa->pdf == sb->pdf));
       }
     }
+}
+
+TEST_CASE("with multiple-scattering compensation, lossless rough lobes reflect and transmit everything") {
+  // Turquin 2019: a white conductor (F = 1) and a clear dielectric interface (R + T, from either
+  // side, solid or thin) have directional albedo 1 ± 0.01 at every roughness and angle; without
+  // the compensation they lose what scatters more than once (up to ~60% at roughness 1).
+  Rng rng(29, 0);
+  const auto conductor = [](float roughness, bool ms) {
+    return Bsdf<N>(
+        ConductorBsdf<N>(TrowbridgeReitz(sqr(roughness)), SampledSpectrum<N>(0.f), SampledSpectrum<N>(0.f), ms));
+  };
+  const auto glass = [](float roughness, float eta, bool thin, bool ms) {
+    return Bsdf<N>(
+        DielectricBsdf<N>(TrowbridgeReitz(sqr(roughness)), eta, SampledSpectrum<N>(1.f), thin, 1.f, 1.f, ms));
+  };
+  for (float roughness : {0.05f, 0.1f, 0.2f, 0.3f, 0.45f, 0.6f, 0.75f, 0.9f, 1.f}) {
+    std::vector<std::pair<Case, Bsdf<N>>> lobes;
+    lobes.push_back({Case{"white conductor", {}}, conductor(roughness, true)});
+    for (float eta : {1.33f, 1.5f, 2.42f})
+      lobes.push_back({Case{"glass", {}, true, eta}, glass(roughness, eta, false, true)});
+    lobes.push_back({Case{"thin glass", {}}, glass(roughness, 1.5f, true, true)});
+    for (const auto& [c, b] : lobes)
+      for (float cos_o : {1.f, 0.6f, 0.25f, 0.05f, -0.2f, -0.7f}) {
+        if (cos_o < 0 && c.name == "white conductor") continue;  // two-sided: the same lobe
+        const Vec3f wo(std::sqrt(1 - cos_o * cos_o), 0, cos_o);
+        const Estimate own = albedo_own_sampling(c, b, wo, roughness > 0.7f ? 250000 : 100000, rng);
+        INFO(c.name << " η " << c.eta << ", roughness " << roughness << ", cos θo " << cos_o << ": albedo "
+                    << own.mean[0] << " ± " << own.standard_error[0]);
+        CHECK(own.standard_error[0] < 0.0025);
+        CHECK(own.mean[0] == Approx(1).margin(0.01));
+      }
+  }
+  // Without compensation, the white metal at roughness 1 keeps E_avg ≈ 0.41... of the light.
+  const Case c{"white conductor, single scattering", {}};
+  double e_avg = 0;
+  constexpr int kCosines = 32;
+  for (int i = 0; i < kCosines; ++i) {
+    const float mu = (i + 0.5f) / kCosines;
+    e_avg += 2 * mu * albedo_own_sampling(c, conductor(1, false), {std::sqrt(1 - mu * mu), 0, mu}, 4000, rng).mean[0] /
+             kCosines;
+  }
+  WARN("E_avg of a white GGX metal at roughness 1, single scattering: " << e_avg << "; table "
+                                                                        << SpecularAlbedo::table().white_average(1));
+  CHECK(e_avg == Approx(SpecularAlbedo::table().white_average(1)).margin(0.01));
+}
+
+TEST_CASE("anisotropic GGX: reciprocal, isotropic at strength 0, and conserving energy at every azimuth") {
+  Rng rng(31, 0);
+  const SampledSpectrum<N> n(0.3f), k(3.f);
+  for (float roughness : {0.05f, 0.3f, 1.f}) {
+    const float alpha = sqr(roughness), alpha_x = lerp(sqr(0.7f), alpha, 1.f);
+    // Single scattering is reciprocal, f(wo, wi) = f(wi, wo), for the metal and the glass's reflection.
+    const ConductorBsdf<N> metal(TrowbridgeReitz(alpha_x, alpha), n, k, false);
+    const DielectricBsdf<N> glass(TrowbridgeReitz(alpha_x, alpha), 1.5f, SampledSpectrum<N>(1.f), false, 1, 1, false);
+    for (int i = 0; i < 200; ++i) {
+      Vec3f a = sample_uniform_sphere({rng.uniform(), rng.uniform()}),
+            b = sample_uniform_sphere({rng.uniform(), rng.uniform()});
+      a.z = std::abs(a.z), b.z = std::abs(b.z);
+      INFO("roughness " << roughness << " wo " << a.x << "," << a.y << "," << a.z << " wi " << b.x << "," << b.y << ","
+                        << b.z);
+      CHECK(metal.f(a, b)[0] == Approx(metal.f(b, a)[0]).epsilon(1e-4).margin(1e-6));
+      CHECK(glass.f(a, b)[0] == Approx(glass.f(b, a)[0]).epsilon(1e-4).margin(1e-6));
+    }
+    // Strength 0 is the isotropic lobe bit for bit.
+    PbrMaterial plain = PbrMaterial::metal_of(Rgb{0.9f, 0.6f, 0.3f}, roughness), zero = plain;
+    zero.anisotropy_strength = 0, zero.anisotropy_rotation = 1;
+    const Bsdf<N> p = bsdf_of(plain), z = bsdf_of(zero);
+    for (int i = 0; i < 100; ++i) {
+      const Vec3f wo = sample_uniform_sphere({rng.uniform(), rng.uniform()}),
+                  wi = sample_uniform_sphere({rng.uniform(), rng.uniform()});
+      const SampledSpectrum<N> fp = bsdf_f(p, wo, wi), fz = bsdf_f(z, wo, wi);
+      for (int l = 0; l < N; ++l) CHECK(std::bit_cast<uint32_t>(fp[l]) == std::bit_cast<uint32_t>(fz[l]));
+      CHECK(bsdf_pdf(p, wo, wi) == bsdf_pdf(z, wo, wi));
+    }
+    // Energy at azimuths off the axes (the suites above view along x): the compensation of the
+    // white metal uses the isotropic albedo at √(α_x α_y) (as Cycles does), an approximation that
+    // may leave some energy out on strongly stretched lobes but adds at most 3%.
+    const ConductorBsdf<N> white(TrowbridgeReitz(alpha_x, alpha), SampledSpectrum<N>(0.f), SampledSpectrum<N>(0.f));
+    for (float phi : {0.f, 0.5f, 1.f, 1.5707963f})
+      for (float cos_o : {0.9f, 0.5f, 0.15f}) {
+        const float sin_o = std::sqrt(1 - cos_o * cos_o);
+        const Vec3f wo(sin_o * std::cos(phi), sin_o * std::sin(phi), cos_o);
+        const Estimate e = albedo_own_sampling(Case{"white", {}}, Bsdf<N>(white), wo, 60000, rng);
+        INFO("roughness " << roughness << " φ " << phi << " cos θo " << cos_o << ": albedo " << e.mean[0] << " ± "
+                          << e.standard_error[0]);
+        CHECK(e.mean[0] <= 1.03 + 4 * e.standard_error[0]);
+        CHECK(e.mean[0] >= 0.75);
+      }
+  }
 }

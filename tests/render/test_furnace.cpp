@@ -111,3 +111,26 @@ TEST_CASE("furnace: the default Sobol sampler converges at least as fast as inde
   WARN("MSE per doubling of spp, 4 to 64: Sobol x" << sobol_rate << ", independent x" << independent_rate);
   CHECK(sobol_rate <= 0.55);
 }
+
+TEST_CASE("furnace: rough white metal spheres render 1 with multiple-scattering compensation") {
+  // Lossless (white) metal at roughness 0.3, 0.6 and 1, side by side so that light also bounces
+  // between them, under a uniform environment of radiance 1: everything reflects everything, so the
+  // image is 1 everywhere. Single scattering loses up to ~60% per bounce at roughness 1 (the control).
+  for (const bool compensated : {true, false}) {
+    Scene scene;
+    for (float roughness : {0.3f, 0.6f, 1.f}) {
+      Material m{.name = "white metal", .kind = PbrMaterial::metal_of(Rgb{1, 1, 1}, roughness)};
+      std::get<PbrMaterial>(m.kind).energy_compensation = compensated;
+      scene.materials.push_back(m);
+    }
+    for (uint32_t i = 0; i < 3; ++i) test::add_mesh(scene, test::make_icosphere({float(i) - 1.f, 0, 0}, 0.55f, 3, i));
+    scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
+    const auto img = test::render_rgb(scene, test::look_at({0, 0, 6.f}, {0, 0, 0}, 12.f), 32, 16, 1024, 64);
+    CHECK(img.stats.invalid_samples == 0);
+    INFO((compensated ? "compensated" : "single scattering") << ": mean " << img.mean(0, 0, 4, 32, 12));
+    if (compensated)
+      test::check_mean(img, 0, 4, 32, 12, 1.0, 0.01);
+    else
+      CHECK(img.mean(1, 0, 4, 32, 12) < 0.9);
+  }
+}
