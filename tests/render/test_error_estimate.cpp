@@ -57,12 +57,7 @@ TEST_CASE("error estimate: a grey sphere filling the image under a uniform sky (
 }
 
 TEST_CASE("error estimate: inside a closed emitting sphere (Y = Le / (1 - albedo) exactly)") {
-  Scene scene;
-  Material m = test::diffuse({0.5f, 0.5f, 0.5f});
-  m.emission = RgbIlluminantSpectrum(Rgb{0.5f, 0.5f, 0.5f});
-  m.double_sided = true;
-  scene.materials.push_back(m);
-  test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 2, 0));
+  const Scene scene = test::emitting_sphere_scene();
   const Film film = render_film(scene, test::look_at({0, 0, 0.3f}, {0, 0, -1}, 60.f), 48, 8, 12, 1000);
   check_estimate(film, true_rel_rmse(
                            film, [](size_t) { return 1.0; }, [](size_t) { return 0.0; }));

@@ -40,12 +40,7 @@ TEST_CASE("furnace: albedo-0.5 sphere under a uniform environment renders 0.5") 
 
 TEST_CASE("furnace: inside a closed emitting sphere the radiance is Le / (1 - albedo)") {
   // Albedo 0.5, Le 0.5: L = 1 after infinitely many bounces (Russian roulette keeps it unbiased).
-  Scene scene;
-  Material m = test::diffuse({0.5f, 0.5f, 0.5f});
-  m.emission = RgbIlluminantSpectrum(Rgb{0.5f, 0.5f, 0.5f});
-  m.double_sided = true;
-  scene.materials.push_back(m);
-  test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 2, 0));
+  const Scene scene = test::emitting_sphere_scene();
   const auto img = test::render_rgb(scene, test::look_at({0, 0, 0.3f}, {0, 0, -1}, 60.f), 32, 32, 128, 1000);
   CHECK(img.stats.invalid_samples == 0);
   test::check_mean(img, 0, 0, 32, 32, 1.0, 0.01);

@@ -85,6 +85,16 @@ uint32_t add_mesh(Scene& scene, Mesh mesh) {
   return index;
 }
 
+Scene emitting_sphere_scene() {
+  Scene scene;
+  Material m = diffuse({0.5f, 0.5f, 0.5f});
+  m.emission = RgbIlluminantSpectrum(Rgb{0.5f, 0.5f, 0.5f});
+  m.double_sided = true;
+  scene.materials.push_back(m);
+  add_mesh(scene, make_icosphere({0, 0, 0}, 1.f, 2, 0));
+  return scene;
+}
+
 double TestRender::mean(int channel) const { return mean(channel, 0, 0, width, height); }
 
 double TestRender::mean(int channel, int x0, int y0, int x1, int y1) const {

@@ -21,6 +21,10 @@ CameraDesc look_at(const Vec3f& eye, const Vec3f& target, float yfov_degrees);
 
 Material diffuse(Rgb albedo, const std::string& name = "diffuse");
 
+// A closed, double-sided sphere of radius 1 at the origin, albedo 0.5 and emitting 0.5: seen from
+// inside, every pixel's radiance is Le / (1 − albedo) = 1 exactly.
+Scene emitting_sphere_scene();
+
 // Adds a mesh with one identity instance; returns the mesh index.
 uint32_t add_mesh(Scene& scene, Mesh mesh);
 
