@@ -249,6 +249,9 @@ def run_prism(a, gltf, exr, width, height, cam_index, env, spp=None, max_depth=N
            "--seed", str(a.seed if seed is None else seed), "--threads", str(a.threads), "--camera", str(cam_index)]
     if env:
         cmd += ["--env", env]
+    # An asset given a camera is rendered from a copy whose buffers and images are symlinks into the
+    # asset's folder (write_with_camera); Prism's file policy follows them only when told to.
+    cmd += ["--allow-external-paths"]
     ru0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
