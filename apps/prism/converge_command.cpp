@@ -38,7 +38,7 @@ std::vector<Configuration> configurations(const ConvergeArgs& args) {
   base.threads = args.threads;
   base.seed = args.seed;
   base.progress = false;
-  std::vector<Configuration> c(6, {"", base});
+  std::vector<Configuration> c(7, {"", base});
   c[0].name = "path, 8 wavelengths, NEE+MIS, Sobol";
   c[1].name = "1 wavelength per path";
   c[1].options.wavelengths = 1;
@@ -50,6 +50,8 @@ std::vector<Configuration> configurations(const ConvergeArgs& args) {
   c[4].options.sampler = SamplerKind::independent;
   c[5].name = "whitted";
   c[5].options.integrator = IntegratorKind::whitted;
+  c[6].name = "bdpt";
+  c[6].options.integrator = IntegratorKind::bdpt;
   return c;
 }
 

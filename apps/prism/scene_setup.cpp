@@ -80,7 +80,19 @@ const CLI::Validator& seed_value() {
   return v;
 }
 
-const char* integrator_name(IntegratorKind kind) { return kind == IntegratorKind::path ? "path" : "whitted"; }
+const char* integrator_name(IntegratorKind kind) {
+  switch (kind) {
+    case IntegratorKind::path:
+      return "path";
+    case IntegratorKind::bdpt:
+      return "bdpt";
+    case IntegratorKind::light:
+      return "light";
+    case IntegratorKind::whitted:
+      break;
+  }
+  return "whitted";
+}
 const char* sampler_name(SamplerKind kind) { return kind == SamplerKind::independent ? "independent" : "sobol"; }
 
 void add_scene_options(CLI::App* cmd, SceneArgs& args) {
@@ -136,9 +148,12 @@ void add_render_options(CLI::App* cmd, RenderOptions& options) {
       ->default_val(16)
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--integrator", options.integrator,
-                  "path: unidirectional path tracing; whitted: recursive Fresnel splitting")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, IntegratorKind>{{"path", IntegratorKind::path}, {"whitted", IntegratorKind::whitted}}))
+                  "path: unidirectional path tracing; bdpt: bidirectional path tracing; light: light tracing "
+                  "alone; whitted: recursive Fresnel splitting")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, IntegratorKind>{{"path", IntegratorKind::path},
+                                                                                {"bdpt", IntegratorKind::bdpt},
+                                                                                {"light", IntegratorKind::light},
+                                                                                {"whitted", IntegratorKind::whitted}}))
       ->default_str("path");
   cmd->add_option("--wavelengths", options.wavelengths, "Wavelengths carried per path (1, 4 or 8)")
       ->default_val(kDefaultWavelengths)

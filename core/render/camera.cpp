@@ -27,6 +27,7 @@ Camera::Camera(const CameraDesc& desc, int width, int height)
     half_h_ = desc.ymag;
     half_w_ = desc.ymag * aspect;
   }
+  pixel_area_ = (2.f * half_w_ / float(width)) * (2.f * half_h_ / float(height));
 }
 
 Ray Camera::generate_ray(float x, float y) const {
@@ -35,6 +36,27 @@ Ray Camera::generate_ray(float x, float y) const {
   if (projection_ == CameraDesc::Projection::orthographic)
     return {eye_ + right_ * (sx * half_w_) + up_ * (sy * half_h_), forward_, kInfinity};
   return {eye_, normalize(forward_ + right_ * (sx * half_w_) + up_ * (sy * half_h_)), kInfinity};
+}
+
+std::optional<Camera::Connection> Camera::connect(const Vec3f& p) const {
+  const Vec3f d = p - eye_;
+  const float z = dot(d, forward_);
+  if (!(z > 0.f)) return std::nullopt;
+  const bool pinhole = perspective();
+  const float sx = dot(d, right_) / (pinhole ? z * half_w_ : half_w_);
+  const float sy = dot(d, up_) / (pinhole ? z * half_h_ : half_h_);
+  const Vec2f r{(sx + 1.f) * 0.5f * float(width_), (1.f - sy) * 0.5f * float(height_)};
+  if (!(r.x >= 0.f && r.x < float(width_) && r.y >= 0.f && r.y < float(height_))) return std::nullopt;
+  if (!pinhole) return Connection{r, p - forward_ * z, -forward_, 1.f / pixel_area_};
+  const float d2 = length_squared(d), distance = std::sqrt(d2);
+  const Vec3f w = d / -distance;
+  return Connection{r, eye_, w, ray_density({eye_, -w, kInfinity}) / d2};
+}
+
+float Camera::ray_density(const Ray& ray) const {
+  if (!perspective()) return 1.f / pixel_area_;
+  const float cos_theta = dot(ray.d, forward_);
+  return cos_theta > 0.f ? 1.f / (pixel_area_ * cos_theta * cos_theta * cos_theta) : 0.f;
 }
 
 CameraDesc framing_camera(const Bounds3f& bounds, float aspect) {

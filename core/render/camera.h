@@ -2,6 +2,8 @@
 // Pinhole perspective and orthographic cameras (glTF conventions: the camera looks down its
 // local −z with +y up). Film coordinates: sx ∈ [−1, 1] left to right, sy ∈ [−1, 1] bottom to top.
 
+#include <optional>
+
 #include "base/ray.h"
 #include "scene/scene.h"
 
@@ -14,6 +16,23 @@ class Camera {
   // The ray through film position (x, y) in pixels, (0, 0) = top-left corner of the image.
   Ray generate_ray(float x, float y) const;
 
+  // For light tracing (bidirectional methods): how a point p is seen by the camera (pbrt-v4 §5.2
+  // We; Veach 1997 §10.2), if it is inside the frame.
+  struct Connection {
+    Vec2f raster;  // film position, pixels
+    Vec3f point;   // where the camera ray through p starts: the eye, or the orthographic film
+    Vec3f w;       // unit, from p towards `point`
+    // Density of the camera's rays through p, per unit film area in pixels and per unit area
+    // across the ray at p: 1 / (A_pixel · cos³θ · d²) for a pinhole, with A_pixel a pixel's area
+    // on the image plane at distance 1; 1 / A_pixel for an orthographic camera.
+    float importance;
+  };
+  std::optional<Connection> connect(const Vec3f& p) const;
+  // The density of `ray` among the camera's rays, per unit film area in pixels: solid-angle
+  // 1 / (A_pixel · cos³θ) for a pinhole, area 1 / A_pixel for an orthographic camera.
+  float ray_density(const Ray& ray) const;
+  bool perspective() const { return projection_ == CameraDesc::Projection::perspective; }
+
   int width() const { return width_; }
   int height() const { return height_; }
 
@@ -21,6 +40,7 @@ class Camera {
   CameraDesc::Projection projection_;
   Vec3f eye_, forward_, right_, up_;
   float half_w_, half_h_;  // perspective: tangents of the half angles; orthographic: half extents
+  float pixel_area_;       // on the image plane at distance 1, or of the orthographic film
   int width_, height_;
 };
 

@@ -15,7 +15,8 @@ Film::Film(int width, int height, uint32_t aovs, SpectralBins bins)
       sq_(pixel_count() * 3, 0),
       count_(pixel_count(), 0),
       aov_(aovs & (kAovAlbedo | kAovNormal | kAovDepth) ? pixel_count() * kAovFields : 0, 0),
-      spectral_(pixel_count() * bins_.count(), 0) {}
+      spectral_(pixel_count() * bins_.count(), 0),
+      splat_(aovs & kFilmSplats ? pixel_count() * 3 : 0, 0) {}
 
 bool Film::add(size_t p, const FilmSample& s) {
   const bool valid = fixed_in_range(s.xyz.x) && fixed_in_range(s.xyz.y) && fixed_in_range(s.xyz.z);
@@ -50,7 +51,11 @@ void Film::merge(const Film& other) {
     for (size_t i = 0; i < into.size(); ++i) into[i] += from[i];
   };
   add(sum_, other.sum_), add(sq_, other.sq_), add(count_, other.count_), add(aov_, other.aov_),
-      add(spectral_, other.spectral_);
+      add(spectral_, other.spectral_), add(splat_, other.splat_);
+}
+
+void Film::add_splats(const std::vector<Fixed>& xyz_sums) {
+  for (size_t i = 0; i < splat_.size(); ++i) splat_[i] += xyz_sums[i];
 }
 
 // s²/n with s² = (Σy² − (Σy)²/n) / (n − 1), the unbiased sample variance, from the exact sums.
@@ -77,7 +82,12 @@ std::vector<float> means(const std::vector<Fixed>& sums, const std::vector<uint3
 
 }  // namespace
 
-std::vector<float> Film::xyz_image() const { return means(sum_, count_, 3); }
+std::vector<float> Film::xyz_image() const {
+  if (splat_.empty()) return means(sum_, count_, 3);
+  std::vector<Fixed> total = sum_;
+  for (size_t i = 0; i < total.size(); ++i) total[i] += splat_[i];
+  return means(total, count_, 3);
+}
 
 std::vector<float> Film::albedo_image() const {
   std::vector<float> out(pixel_count() * 3);

@@ -22,6 +22,11 @@ namespace prism {
 
 // What the first surface a camera ray hits tells a compositor or denoiser.
 enum Aov : uint32_t { kAovAlbedo = 1, kAovNormal = 2, kAovDepth = 4, kAovVariance = 8, kAovSpp = 16 };
+// Not a layer: the film also keeps light-tracing splats (splat_buffer.h), sums of XYZ that light
+// paths add to any pixel. A pixel's value is (its samples' sum + its splats) / its sample count:
+// each of its samples traced one light path, so the count is the number of light paths too.
+// The error estimate covers the pixel's own samples only.
+constexpr uint32_t kFilmSplats = 1u << 16;
 
 // One camera sample's contribution, as the film stores it.
 struct FilmSample {
@@ -64,7 +69,11 @@ class Film {
   // unbiased sample variance of the pixel's samples.
   // Mean of channel c (0, 1, 2: X, Y, Z) of pixel p's samples, and the estimated variance of that
   // mean: s²/n, with s² the unbiased sample variance of the pixel's samples.
-  double mean(size_t p, int c) const { return count_[p] > 0 ? to_double(sum_[p * 3 + c]) / count_[p] : 0.0; }
+  double mean(size_t p, int c) const {
+    return count_[p] > 0 ? to_double(sum_[p * 3 + c] + (splat_.empty() ? 0 : splat_[p * 3 + c])) / count_[p] : 0.0;
+  }
+  // Adds light-tracing splat sums, 3 (XYZ) per pixel (a film made with kFilmSplats).
+  void add_splats(const std::vector<Fixed>& xyz_sums);
   double variance_of_mean(size_t p, int c) const;
   // The same for the luminance Y.
   double mean_y(size_t p) const { return mean(p, 1); }
@@ -90,11 +99,11 @@ class Film {
   // The raw fields, in a fixed order, for checkpoint files (to write, and to read back).
   template <typename Visit>
   void visit_fields(Visit&& visit) const {
-    visit(sum_), visit(sq_), visit(count_), visit(aov_), visit(spectral_);
+    visit(sum_), visit(sq_), visit(count_), visit(aov_), visit(spectral_), visit(splat_);
   }
   template <typename Visit>
   void visit_fields(Visit&& visit) {
-    visit(sum_), visit(sq_), visit(count_), visit(aov_), visit(spectral_);
+    visit(sum_), visit(sq_), visit(count_), visit(aov_), visit(spectral_), visit(splat_);
   }
 
  private:
@@ -108,6 +117,7 @@ class Film {
   std::vector<uint32_t> count_;  // samples
   std::vector<Fixed> aov_;       // kAovFields sums per pixel, when AOVs are on
   std::vector<Fixed> spectral_;  // bins_.count() sums per pixel
+  std::vector<Fixed> splat_;     // XYZ splat sums per pixel, with kFilmSplats
 };
 
 }  // namespace prism

@@ -8,6 +8,7 @@
 #include "base/parallel.h"
 #include "base/progress.h"
 #include "render/adaptive_sampling.h"
+#include "render/bdpt.h"
 #include "render/pass_schedule.h"
 #include "render/whitted_integrator.h"
 #include "spectral/cie.h"
@@ -43,16 +44,26 @@ struct CameraSample {
   Ray ray;
 };
 
+// The bidirectional estimator's scene and one splat buffer per thread (bidirectional renders only).
+struct Splatting {
+  const BdptScene* scene = nullptr;
+  SplatBuffer* splats = nullptr;
+  uint64_t invalid = 0;
+};
+
 // The body of the render: sample s of a pixel, from the sampler's stream for (pixel, s, seed)
 // alone, through the camera and the radiance estimator to CIE XYZ.
 template <int N>
 CameraSample<N> camera_sample(const World& world, const Camera& camera, const RenderOptions& options,
-                              RadianceFn<N> radiance, Sampler& sampler, Vec2i pixel, int s, RayCounters& rays) {
+                              RadianceFn<N> radiance, Splatting& bdpt, Sampler& sampler, Vec2i pixel, int s,
+                              RayCounters& rays) {
   sampler.start_pixel_sample(pixel, s);
   const Vec2f jitter = sampler.get_2d();
   CameraSample<N> c{SampledWavelengths<N>::sample(sampler.get_2d()), {}, {}, {}};
   c.ray = camera.generate_ray(float(pixel.x) + jitter.x, float(pixel.y) + jitter.y);
-  c.L = radiance(world, c.ray, c.lambda, sampler, options.path, rays);
+  c.L = bdpt.scene
+            ? bdpt_radiance<N>(*bdpt.scene, c.ray, c.lambda, sampler, options.path, *bdpt.splats, rays, bdpt.invalid)
+            : radiance(world, c.ray, c.lambda, sampler, options.path, rays);
   c.xyz = to_xyz(c.L, c.lambda);
   return c;
 }
@@ -85,8 +96,9 @@ struct PassStats {
 
 // Takes every active pixel of the tile at (x0, y0) from the samples it has to `end`.
 template <int N>
-void render_tile(const World& world, const Camera& camera, const RenderOptions& options, RadianceFn<N> radiance, int x0,
-                 int y0, int end, const std::vector<uint8_t>& active, Film& film, PassStats& stats) {
+void render_tile(const World& world, const Camera& camera, const RenderOptions& options, RadianceFn<N> radiance,
+                 Splatting bdpt, int x0, int y0, int end, const std::vector<uint8_t>& active, Film& film,
+                 PassStats& stats) {
   Sampler sampler(options.seed, options.sampler);
   const bool first_hits = options.aovs & (kAovAlbedo | kAovNormal | kAovDepth);
   const int bins = film.bins().count();
@@ -96,7 +108,8 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
       const size_t p = size_t(y) * camera.width() + x;
       if (!active.empty() && !active[p]) continue;
       for (int s = options.sample_begin + int(film.samples(p)); s < end; ++s) {
-        const CameraSample<N> c = camera_sample<N>(world, camera, options, radiance, sampler, {x, y}, s, stats.rays);
+        const CameraSample<N> c =
+            camera_sample<N>(world, camera, options, radiance, bdpt, sampler, {x, y}, s, stats.rays);
         FilmSample fs{c.xyz};
         if (first_hits) first_hit<N>(world, c.ray, c.lambda, fs);
         ++stats.samples;
@@ -106,14 +119,24 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
             if (c.lambda.pdf()[i] > 0) film.add_spectral(p, c.lambda[i], double(c.L[i]) / (c.lambda.pdf()[i] * N));
       }
     }
+  stats.invalid += bdpt.invalid;
 }
 
 template <int N>
 RenderResult render_with(const World& world, const Camera& camera, const RenderOptions& options,
                          const RenderControl& control, std::optional<RenderState> resume) {
   const RadianceFn<N> radiance = radiance_estimator<N>(world, options);
+  const bool bidirectional = options.integrator == IntegratorKind::bdpt || options.integrator == IntegratorKind::light;
+  std::optional<BdptScene> bdpt_scene;
+  std::optional<ThreadSplats> splats;
+  if (bidirectional) {
+    bdpt_scene.emplace(world, camera, options.features.value_or(path_features(world.features())).media,
+                       options.integrator == IntegratorKind::light);
+    splats.emplace(camera.width(), camera.height());
+  }
+  const uint32_t film_flags = options.aovs | (bidirectional ? kFilmSplats : 0u);
   RenderResult result{resume ? std::move(*resume)
-                             : RenderState{Film(camera.width(), camera.height(), options.aovs, options.spectral_bins)}};
+                             : RenderState{Film(camera.width(), camera.height(), film_flags, options.spectral_bins)}};
   RenderState& state = result.state;
   const int tiles_x = (camera.width() + kTileSize - 1) / kTileSize;
   const int tiles_y = (camera.height() + kTileSize - 1) / kTileSize;
@@ -143,8 +166,9 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
     }
     parallel_for(int64_t(tiles_x) * tiles_y, [&](int64_t tile) {
       PassStats ps;
-      render_tile<N>(world, camera, options, radiance, int(tile % tiles_x) * kTileSize, int(tile / tiles_x) * kTileSize,
-                     end, active, state.film, ps);
+      const Splatting bdpt{bdpt_scene ? &*bdpt_scene : nullptr, splats ? &splats->local() : nullptr};
+      render_tile<N>(world, camera, options, radiance, bdpt, int(tile % tiles_x) * kTileSize,
+                     int(tile / tiles_x) * kTileSize, end, active, state.film, ps);
       {
         std::lock_guard lock(stats_mutex);
         state.stats.rays += ps.rays;
@@ -153,6 +177,11 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
       }
       progress.advance();
     });
+    if (splats)
+      for (SplatBuffer& b : *splats) {
+        state.film.add_splats(b.sums());
+        b.clear();
+      }
     state.stats.seconds = seconds_before + seconds_since(start);
     if (control.after_pass) {
       const size_t active_pixels =
@@ -199,6 +228,11 @@ RenderResult render(const World& world, const Camera& camera, const RenderOption
          camera.height());
   if (options.noise_threshold > 0 && (options.sample_begin > 0 || !c.empty()))
     fail("adaptive sampling (a noise threshold) cannot be split into sample ranges or crop windows");
+  if ((options.integrator == IntegratorKind::bdpt || options.integrator == IntegratorKind::light) &&
+      (options.noise_threshold > 0 || !c.empty() || options.spectral_bins.count() > 0))
+    fail(
+        "the bidirectional integrators splat light paths over the whole frame: it takes no noise threshold, crop "
+        "window or spectral bins");
   if (resume && (resume->film.width() != camera.width() || resume->film.height() != camera.height()))
     fail("the state to resume is {}x{}, the camera {}x{}", resume->film.width(), resume->film.height(), camera.width(),
          camera.height());

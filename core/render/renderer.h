@@ -18,7 +18,8 @@
 
 namespace prism {
 
-enum class IntegratorKind { path, whitted };
+// bdpt: bidirectional path tracing (bdpt.h); light: its light-tracing strategy alone (a check).
+enum class IntegratorKind { path, whitted, bdpt, light };
 
 // A window of pixels [x0, x1) × [y0, y1) of the frame; empty: the whole frame.
 struct PixelWindow {

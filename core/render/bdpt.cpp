@@ -1,0 +1,286 @@
+#include "render/bdpt.h"
+
+#include <vector>
+
+#include "render/direct_light.h"
+#include "render/medium_stack.h"
+#include "render/path_vertex.h"
+#include "spectral/cie.h"
+
+namespace prism {
+
+BdptScene::BdptScene(const World& w, const Camera& c, bool m, bool lt)
+    : world(w),
+      camera(c),
+      disk{{0, 0, 0}, 1.f},
+      light_paths(float(c.width()) * float(c.height())),
+      media(m),
+      light_tracing(lt) {
+  const Bounds3f b = w.accel().bounds();
+  if (is_finite(b.lo) && is_finite(b.hi) && b.lo.x <= b.hi.x) {
+    disk.center = b.centroid();
+    disk.radius = std::max(length(b.hi - b.lo) * 0.5f * 1.01f, 1e-3f);
+  }
+}
+
+namespace {
+
+// The media a connection leaving surface si along w runs through: the path's own on the side it
+// came from, those behind the surface for a direction through it.
+MediumStack segment_media(MediumStack media, const SurfaceInteraction& si, const Vec3f& w) {
+  if (dot(w, si.n) * dot(si.wo, si.n) < 0) media.cross(*si.material, si.front_face());
+  return media;
+}
+
+// The light subpath: one light chosen by power, an emission from it, and a random walk with the
+// adjoint BSDF; its non-specular vertices are kept for connections.
+template <int N>
+void trace_light_path(const BdptScene& scene, SampledWavelengths<N>& lambda, Sampler& sampler,
+                      const PathOptions& options, RayCounters& counters, std::vector<LightVertex<N>>& vertices) {
+  vertices.clear();
+  const World& world = scene.world;
+  const PowerLightSampler& lights = world.light_sampler();
+  if (lights.empty()) return;
+  const int block = options.max_depth + 1;  // the sampler's bounce blocks after the camera path's
+  sampler.start_bounce(block);
+  const float u_light = sampler.get_1d();
+  const Vec2f u_pos = sampler.get_2d(), u_dir = sampler.get_2d();
+  const uint32_t index = lights.sample(u_light);
+  const float pick = lights.pmf(index);
+  const Light& light = world.lights()[index];
+  const auto e = sample_le(light, u_pos, u_dir, lambda, scene.disk);
+  if (!e || e->Le.is_zero() || pick == 0.f) return;
+
+  // Georgiev et al. 2012 eqs. 31–33: the direct-sampling density of the light's point (an area
+  // density; a solid-angle one for an environment; 1 for delta lights) over the emission density.
+  const bool finite = !is_infinite(light);
+  const float emission_pdf = pick * e->pdf_pos * e->pdf_dir;
+  const float direct_pdf = pick * (is_delta(light) ? 1.f : finite ? e->pdf_pos : e->pdf_dir);
+  SampledSpectrum<N> beta = e->Le * (e->cos_light / emission_pdf);
+  MisSums m{mis(direct_pdf / emission_pdf), is_delta(light) ? 0.f : mis((finite ? e->cos_light : 1.f) / emission_pdf)};
+  const float beta0 = beta.max();
+  Ray ray = e->ray;
+  MediumStack media;
+
+  for (int length = 1; length <= options.max_depth; ++length) {
+    sampler.start_bounce(block + length);
+    ++counters.secondary;
+    const auto si = world.intersect(ray);
+    if (!si) break;
+    if (scene.media) beta *= media.transmittance(si->t, lambda);
+    m.arrive(si->t, abs_dot(si->n, si->wo), length > 1 || finite);
+    const Material& material = *si->material;
+    const bool entering = si->front_face();
+    const Dielectric* front = scene.media ? media.front_dielectric(material, entering) : nullptr;
+    const Frame frame = si->shading_frame();
+    LightVertex<N> v{*si, frame, make_bsdf<N>(material, si->at, lambda, front), frame.to_local(si->wo), beta,
+                     m,   length};
+    if (!bsdf_is_specular(v.bsdf)) vertices.push_back(v);
+    if (length == options.max_depth) break;
+
+    const float uc = sampler.get_1d();
+    const auto bs = bsdf_sample_f(v.bsdf, v.wo, uc, sampler.get_2d());
+    if (!bs || bs->pdf == 0.f) break;
+    const Vec3f wi = frame.to_world(bs->wi);
+    if (wrong_side(*si, wi, bs->transmission)) break;
+    // Importance is not scaled by 1/η² at a refraction as radiance is (Veach 1997 §5.2): the
+    // delta lobe's value takes it back; the others are the BSDF with its arguments exchanged.
+    const SampledSpectrum<N> f = bs->specular ? bs->f * sqr(bs->eta) : bsdf_f(v.bsdf, bs->wi, v.wo);
+    beta *= f * (abs_cos_theta(v.wo) * abs_dot(si->n, wi) / (abs_dot(si->n, si->wo) * bs->pdf));
+    m.scatter(bs->pdf, bs->specular ? bs->pdf : bsdf_pdf(v.bsdf, bs->wi, v.wo), abs_dot(si->n, wi), bs->specular);
+    ray = si->spawn(wi);
+    if (bs->transmission && scene.media) media.cross(material, entering);
+
+    // Russian roulette on the throughput relative to the emitted one, after the first bounce.
+    const float q = std::max(0.f, 1.f - beta.max() / beta0);
+    if (options.russian_roulette && length >= 2 && q > 0.f) {
+      if (sampler.get_1d() < q) break;
+      beta /= 1.f - q;
+    }
+    if (beta.is_zero()) break;
+  }
+}
+
+// s = 1: a light sample seen from camera vertex si (Georgiev et al. 2012 eqs. 43–45).
+template <int N>
+SampledSpectrum<N> connect_light(const BdptScene& scene, const SurfaceInteraction& si, const Frame& frame,
+                                 const Bsdf<N>& bsdf, const Vec3f& wo, const MisSums& m, const MediumStack& media,
+                                 const SampledWavelengths<N>& lambda, Sampler& sampler, RayCounters& counters) {
+  const float u_light = sampler.get_1d();
+  const Vec2f u = sampler.get_2d();
+  const PowerLightSampler& lights = scene.world.light_sampler();
+  if (lights.empty()) return SampledSpectrum<N>(0.f);
+  const uint32_t index = lights.sample(u_light);
+  const float pick = lights.pmf(index);
+  const Light& light = scene.world.lights()[index];
+  const auto s = sample_li(light, LightSampleContext{si.p, si.p_error, si.n}, u, lambda);
+  if (!s || s->L.is_zero() || !(s->pdf > 0.f) || pick == 0.f) return SampledSpectrum<N>(0.f);
+  const Vec3f wi = frame.to_local(s->wi);
+  if (wrong_side(si, s->wi, wi.z * wo.z < 0)) return SampledSpectrum<N>(0.f);
+  const SampledSpectrum<N> f = bsdf_f(bsdf, wo, wi) * abs_cos_theta(wi);
+  if (f.is_zero()) return SampledSpectrum<N>(0.f);
+
+  // The direct sample's solid-angle density (a point light's is d², a directional light's 1,
+  // as its L is already divided by d²), the light's cosine, and the distance for absorption.
+  float direct_pdf = s->pdf, cos_light = 1.f, distance = kInfinity;
+  if (const auto* a = std::get_if<AreaLight>(&light)) {
+    cos_light = abs_dot(a->n, s->wi);
+    distance = std::sqrt(s->pdf * cos_light * a->area);
+  } else if (const auto* p = std::get_if<PointLightSource>(&light)) {
+    direct_pdf = length_squared(p->position - si.p), distance = std::sqrt(direct_pdf);
+  } else if (const auto* sp = std::get_if<SpotLightSource>(&light)) {
+    direct_pdf = length_squared(sp->point.position - si.p), distance = std::sqrt(direct_pdf);
+  }
+  const float emission_pdf = pdf_le(light, -s->wi, scene.disk).product();
+  const float bsdf_dir = is_delta(light) ? 0.f : bsdf_pdf(bsdf, wo, wi);
+  const float w_light = mis(bsdf_dir / (pick * direct_pdf));
+  const float w_camera = mis(emission_pdf * abs_dot(si.n, s->wi) / (direct_pdf * cos_light)) *
+                         (m.vcm + m.vc * mis(bsdf_pdf(bsdf, wi, wo)));
+  ++counters.shadow;
+  if (scene.world.occluded(s->shadow_ray)) return SampledSpectrum<N>(0.f);
+  SampledSpectrum<N> c = f * s->L / (pick * s->pdf * (1.f + w_light + w_camera));
+  if (scene.media) c *= segment_media(media, si, s->wi).transmittance(distance, lambda);
+  return c;
+}
+
+// s ≥ 2, t ≥ 2: camera vertex si joined to light vertex v (eqs. 40–42).
+template <int N>
+SampledSpectrum<N> connect_vertices(const BdptScene& scene, const SurfaceInteraction& si, const Frame& frame,
+                                    const Bsdf<N>& bsdf, const Vec3f& wo, const MisSums& m, const MediumStack& media,
+                                    const LightVertex<N>& v, const SampledWavelengths<N>& lambda,
+                                    RayCounters& counters) {
+  const Vec3f d = v.si.p - si.p;
+  const float dist2 = length_squared(d);
+  if (!(dist2 > 0.f)) return SampledSpectrum<N>(0.f);
+  const float dist = std::sqrt(dist2);
+  const Vec3f w = d / dist;
+  const Vec3f wi = frame.to_local(w), wl = v.frame.to_local(-w);
+  if (wrong_side(si, w, wi.z * wo.z < 0) || wrong_side(v.si, -w, wl.z * v.wo.z < 0)) return SampledSpectrum<N>(0.f);
+  const SampledSpectrum<N> c = bsdf_f(bsdf, wo, wi) * v.adjoint_f(wl, -w) * v.beta * (abs_cos_theta(wi) / dist2);
+  if (c.is_zero()) return SampledSpectrum<N>(0.f);
+  // Each side's density of making the other's vertex, as an area density there.
+  const float camera_pdf = bsdf_pdf(bsdf, wo, wi) * abs_dot(v.si.n, w) / dist2;
+  const float light_pdf = bsdf_pdf(v.bsdf, v.wo, wl) * abs_dot(si.n, w) / dist2;
+  const float w_light = mis(camera_pdf) * (v.mis.vcm + v.mis.vc * mis(bsdf_pdf(v.bsdf, wl, v.wo)));
+  const float w_camera = mis(light_pdf) * (m.vcm + m.vc * mis(bsdf_pdf(bsdf, wi, wo)));
+  ++counters.shadow;
+  if (scene.world.occluded(spawn_ray_to(si.p, si.p_error, si.n, v.si.p, v.si.p_error, v.si.n)))
+    return SampledSpectrum<N>(0.f);
+  SampledSpectrum<N> r = c / (1.f + w_light + w_camera);
+  if (scene.media) r *= segment_media(media, si, w).transmittance(dist, lambda);
+  return r;
+}
+
+// t = 1: light vertex v seen by the camera, splatted where it lands on the film (eqs. 46–47):
+// β · f · |cos| · (camera ray density across the ray at v) / (light paths per pixel sample).
+template <int N>
+void splat_to_camera(const BdptScene& scene, const LightVertex<N>& v, const SampledWavelengths<N>& lambda,
+                     SplatBuffer& splats, RayCounters& counters, uint64_t& invalid) {
+  const auto c = scene.camera.connect(v.si.p);
+  if (!c) return;
+  const Vec3f wl = v.frame.to_local(c->w);
+  if (wrong_side(v.si, c->w, wl.z * v.wo.z < 0)) return;
+  const SampledSpectrum<N> f = v.adjoint_f(wl, c->w);
+  if (f.is_zero()) return;
+  const float camera_pdf = c->importance * abs_dot(v.si.n, c->w);  // an area density at v
+  const float w_light = mis(camera_pdf / scene.light_paths) * (v.mis.vcm + v.mis.vc * mis(bsdf_pdf(v.bsdf, wl, v.wo)));
+  ++counters.shadow;
+  if (scene.world.occluded(spawn_ray_to(v.si.p, v.si.p_error, v.si.n, c->point, {}, {}))) return;
+  const float weight = scene.light_tracing ? 1.f : 1.f / (1.f + w_light);
+  const SampledSpectrum<N> L = v.beta * f * (c->importance * weight / scene.light_paths);
+  if (!splats.add(c->raster.x, c->raster.y, to_xyz(L, lambda))) ++invalid;
+}
+
+}  // namespace
+
+template <int N>
+SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, SampledWavelengths<N>& lambda, Sampler& sampler,
+                                 const PathOptions& options, SplatBuffer& splats, RayCounters& counters,
+                                 uint64_t& invalid) {
+  thread_local std::vector<LightVertex<N>> light;
+  trace_light_path(scene, lambda, sampler, options, counters, light);
+
+  const World& world = scene.world;
+  const PowerLightSampler& lights = world.light_sampler();
+  SampledSpectrum<N> L(0.f), beta(1.f);
+  MisSums m{mis(scene.light_paths / scene.camera.ray_density(ray)), 0.f};
+  float eta_scale = 1.f;  // Π η² of the refractions so far: undoes radiance scaling for roulette
+  MediumStack media;
+  // s = 0: a light the camera path reached; full weight when seen directly (eq. 38).
+  const auto add_emitted = [&](int depth, const SampledSpectrum<N>& Le, float direct_pdf, float emission_pdf) {
+    L += depth == 0 ? beta * Le : beta * Le / (1.f + mis(direct_pdf) * m.vcm + mis(emission_pdf) * m.vc);
+  };
+
+  for (int depth = 0;; ++depth) {
+    sampler.start_bounce(depth);
+    ++(depth == 0 ? counters.primary : counters.secondary);
+    const auto si = world.intersect(ray);
+    if (scene.media) beta *= media.transmittance(si ? si->t : kInfinity, lambda);
+    if (!si) {
+      if (const Light* env = world.environment()) {
+        const float pick = lights.pmf(uint32_t(world.environment_light())), pdf = environment_pdf(*env, ray.d);
+        add_emitted(depth, environment_Le(*env, ray.d, lambda), pick * pdf, pick * pdf * scene.disk.pdf());
+      }
+      break;
+    }
+    m.arrive(si->t, abs_dot(si->n, si->wo), depth > 0 || scene.camera.perspective());
+    const Material& material = *si->material;
+    if (material.emission) {
+      const int index = world.area_light(si->instance, si->prim);
+      const Light& light = world.lights()[index];
+      if (std::get<AreaLight>(light).emits_towards(si->wo)) {
+        const float pick = lights.pmf(uint32_t(index));
+        const EmissionPdf e = pdf_le(light, si->wo, scene.disk);
+        add_emitted(depth, material.emitted(si->at, lambda), pick * e.pdf_pos, pick * e.product());
+      }
+    }
+    if (depth == options.max_depth || scene.light_tracing) break;
+
+    const bool entering = si->front_face();
+    const Dielectric* front = scene.media ? media.front_dielectric(material, entering) : nullptr;
+    const Bsdf<N> bsdf = make_bsdf<N>(material, si->at, lambda, front);
+    const Frame frame = si->shading_frame();
+    const Vec3f wo = frame.to_local(si->wo);
+    if (!bsdf_is_specular(bsdf)) {
+      L += beta * connect_light(scene, *si, frame, bsdf, wo, m, media, lambda, sampler, counters);
+      // Paths of at most max_depth + 1 segments, as the path tracer's.
+      for (const LightVertex<N>& v : light) {
+        if (v.length + depth + 2 > options.max_depth + 1) break;
+        L += beta * connect_vertices(scene, *si, frame, bsdf, wo, m, media, v, lambda, counters);
+      }
+    }
+
+    const float uc = sampler.get_1d();
+    const auto bs = bsdf_sample_f(bsdf, wo, uc, sampler.get_2d());
+    if (!bs || bs->pdf == 0.f) break;
+    const Vec3f wi = frame.to_world(bs->wi);
+    if (wrong_side(*si, wi, bs->transmission)) break;
+    beta *= bs->f * (abs_cos_theta(bs->wi) / bs->pdf);
+    m.scatter(bs->pdf, bs->specular ? bs->pdf : bsdf_pdf(bsdf, bs->wi, wo), abs_dot(si->n, wi), bs->specular);
+    ray = si->spawn(wi);
+    if (bs->transmission) {
+      eta_scale *= sqr(bs->eta);
+      if (scene.media) media.cross(material, entering);
+    }
+    const float q = std::max(0.f, 1.f - beta.max() * eta_scale);
+    if (options.russian_roulette && depth >= 1 && q > 0.f) {
+      if (sampler.get_1d() < q) break;
+      beta /= 1.f - q;
+    }
+    if (beta.is_zero()) break;
+  }
+
+  // t = 1, with the wavelengths as both subpaths left them.
+  for (const LightVertex<N>& v : light) splat_to_camera(scene, v, lambda, splats, counters, invalid);
+  return L;
+}
+
+#define PRISM_INSTANTIATE(N)                                                                            \
+  template SampledSpectrum<N> bdpt_radiance<N>(const BdptScene&, Ray, SampledWavelengths<N>&, Sampler&, \
+                                               const PathOptions&, SplatBuffer&, RayCounters&, uint64_t&);
+PRISM_INSTANTIATE(1)
+PRISM_INSTANTIATE(4)
+PRISM_INSTANTIATE(8)
+#undef PRISM_INSTANTIATE
+
+}  // namespace prism

@@ -1,0 +1,43 @@
+#pragma once
+// Bidirectional path tracing (Veach 1997, ch. 10) over a camera sample's wavelengths: a light
+// subpath and a camera subpath, every connection strategy (s = 0: the camera path finds a light;
+// s = 1: light sampling; s ≥ 2, t ≥ 2: vertex connection; t = 1: light tracing onto the film,
+// splatted), combined by the power heuristic with the recursive weights of Georgiev et al. 2012
+// (path_vertex.h).
+//
+// Wavelengths: both subpaths carry the camera sample's wavelengths. Every contribution, splats
+// included, is turned into XYZ only after both subpaths are traced, with the wavelengths as they
+// then are: if either subpath met a dispersive interface, the secondary wavelengths are
+// terminated for the whole sample (as for the path tracer: the decision is made before any
+// λ-dependent direction is taken, so each lane's estimate stays unbiased).
+
+#include "base/sampler.h"
+#include "render/camera.h"
+#include "render/light_emission.h"
+#include "render/path_integrator.h"
+#include "render/ray_counters.h"
+#include "render/splat_buffer.h"
+#include "render/world.h"
+
+namespace prism {
+
+// What the bidirectional estimator needs besides a path tracer's arguments.
+struct BdptScene {
+  const World& world;
+  const Camera& camera;
+  SceneDisk disk;      // where infinite lights emit from
+  float light_paths;   // light paths per sample of every pixel: the pixel count
+  bool media;          // track closed dielectrics (absorption, nested indices)
+  bool light_tracing;  // the t = 1 strategy alone (and what the camera sees directly), unweighted
+
+  BdptScene(const World& world, const Camera& camera, bool media, bool light_tracing = false);
+};
+
+// The camera sample's estimate along `ray` (its own pixel's share), and its light path's splats.
+// Returns the number of dropped (NaN, Inf) splats through `invalid`.
+template <int N>
+SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, SampledWavelengths<N>& lambda, Sampler& sampler,
+                                 const PathOptions& options, SplatBuffer& splats, RayCounters& counters,
+                                 uint64_t& invalid);
+
+}  // namespace prism

@@ -1,0 +1,59 @@
+#pragma once
+// A vertex of a light subpath, kept for the connections a camera subpath makes to it, and the
+// partial sums that give every connection its MIS weight in O(1) (van Antwerpen 2011;
+// Georgiev et al. 2012, "Light Transport Simulation with Vertex Connection and Merging",
+// tech. report eqs. 31–37: dVCM and dVC, merging left out).
+
+#include "base/frame.h"
+#include "materials/bsdf.h"
+#include "render/interaction.h"
+
+namespace prism {
+
+// The power heuristic's weight term (β = 2): the MIS sums hold mis(p_other / p_this) ratios.
+inline float mis(float x) { return x * x; }
+
+// Partial sums of one subpath at its last vertex: vcm = mis of the reverse strategies' density
+// ratio up to the previous vertex, vc = the sum over all the farther strategies.
+struct MisSums {
+  float vcm = 0, vc = 0;
+
+  // After arriving at a vertex over distance t (the light's first segment from an infinite light
+  // has no distance) with |cos| cos_in of the geometric normal: eq. 31.
+  void arrive(float t, float cos_in, bool with_distance) {
+    if (with_distance) vcm *= mis(t * t);
+    const float c = mis(cos_in);
+    vcm /= c, vc /= c;
+  }
+  // After scattering: sampling density pdf_dir (solid angle) of the new direction, pdf_rev of
+  // the reverse, |cos| cos_out of the new direction at the geometric normal (eqs. 34–35); a
+  // specular (delta) sample can be made by no other strategy.
+  void scatter(float pdf_dir, float pdf_rev, float cos_out, bool specular) {
+    if (specular) {
+      vcm = 0, vc *= mis(cos_out);
+      return;
+    }
+    vc = mis(cos_out / pdf_dir) * (vc * mis(pdf_rev) + vcm);
+    vcm = mis(1.f / pdf_dir);
+  }
+};
+
+template <int N>
+struct LightVertex {
+  SurfaceInteraction si;
+  Frame frame;
+  Bsdf<N> bsdf;
+  Vec3f wo;                 // local: towards the previous vertex, where the light came from
+  SampledSpectrum<N> beta;  // Le · Π f·cos / pdf from the light to here (importance transport)
+  MisSums mis;
+  int length;  // segments from the light
+
+  // The factor of leaving towards w (world, unit) that makes the adjoint BSDF with shading
+  // normals: f(w, wo) · |ns·wo| · |ng·w| / |ng·wo| (Veach 1997 §5.3, eq. 5.19). f takes the
+  // camera-side direction first, as the path tracer's does, so that both estimate one integral.
+  SampledSpectrum<N> adjoint_f(const Vec3f& w_local, const Vec3f& w) const {
+    return bsdf_f(bsdf, w_local, wo) * (abs_cos_theta(wo) * abs_dot(si.n, w) / abs_dot(si.n, si.wo));
+  }
+};
+
+}  // namespace prism

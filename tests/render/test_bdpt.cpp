@@ -1,0 +1,152 @@
+// Bidirectional path tracing (core/render/bdpt.h) against scenes of known answer and against the
+// path tracer on scenes it renders well (no caustics); light tracing alone (the t = 1 strategy)
+// against the analytic irradiance of a point light; determinism across thread counts; no NaN or
+// Inf on the stress scenes.
+
+#include <catch2/catch.hpp>
+
+#include "base/log.h"
+#include "scene/gltf_loader.h"
+#include "support/test_scenes.h"
+
+using namespace prism;
+
+namespace {
+
+// Every channel of a and b (independent renders) agrees in the mean within 4 standard errors,
+// which must themselves be below `precision` of b's mean.
+void check_agree(const test::TestRender& a, const test::TestRender& b, double precision) {
+  for (int c = 0; c < 3; ++c) {
+    const auto d = test::mean_difference(a, b, c);
+    INFO("channel " << c << ": mean " << a.mean(c) << " vs " << b.mean(c) << ", difference " << d.difference << " ± "
+                    << d.standard_error);
+    REQUIRE(d.standard_error < precision * b.mean(c));
+    CHECK(std::abs(d.difference) <= 4 * d.standard_error);
+  }
+}
+
+// The default scene with its metal and glass made white diffuse: no caustics.
+Scene walls_only_cornell() {
+  Scene scene = load_gltf(std::filesystem::path(PRISM_SOURCE_DIR) / "data/scenes/cornell.gltf");
+  for (Material& m : scene.materials)
+    if (!m.emission && m.name != "white" && m.name != "red" && m.name != "green")
+      m = test::diffuse({0.7f, 0.7f, 0.7f}, m.name);
+  return scene;
+}
+
+}  // namespace
+
+TEST_CASE("bdpt: a sphere of albedo 0.5 under a uniform environment of radiance 1 renders 0.5") {
+  Scene scene;
+  scene.materials.push_back(test::diffuse({0.5f, 0.5f, 0.5f}));
+  test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 3, 0));
+  scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
+  const auto img =
+      test::render_rgb(scene, test::look_at({0, 0, 5.f}, {0, 0, 0}, 30.f), 32, 32, 256, 64, 1, 0, IntegratorKind::bdpt);
+  CHECK(img.stats.invalid_samples == 0);
+  test::check_mean(img, 10, 10, 22, 22, 0.5, 0.02);
+  test::check_mean(img, 0, 0, 32, 3, 1.0, 0.02);  // top rows: sky
+}
+
+TEST_CASE("bdpt: inside a closed emitting sphere the radiance is Le / (1 - albedo)") {
+  const Scene scene = test::emitting_sphere_scene();
+  const auto img = test::render_rgb(scene, test::look_at({0, 0, 0.3f}, {0, 0, -1}, 60.f), 32, 32, 64, 1000, 1, 0,
+                                    IntegratorKind::bdpt);
+  CHECK(img.stats.invalid_samples == 0);
+  test::check_mean(img, 0, 0, 32, 32, 1.0, 0.02);
+}
+
+TEST_CASE("light tracing alone reproduces a point light's irradiance on a plane, rho I cos / (pi d^2)") {
+  // A 2 × 2 Lambertian square under a point light, filling the view of an orthographic camera
+  // straight above (pixel (i, j) covers x = −1 + [i, i + 1]·2/n, z = −1 + [j, j + 1]·2/n): every
+  // light path that reaches the square lands on the film.
+  constexpr float kAlbedo = 0.5f, kIntensity = 4.f;
+  const Vec3f light(0.3f, 1.f, -0.2f);
+  Scene scene;
+  scene.materials.push_back(test::diffuse({kAlbedo, kAlbedo, kAlbedo}));
+  test::add_mesh(scene, test::make_quad({-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, 0));
+  scene.point_lights.push_back({"lamp", light, RgbIlluminantSpectrum(Rgb{kIntensity, kIntensity, kIntensity})});
+  CameraDesc camera;
+  camera.projection = CameraDesc::Projection::orthographic;
+  camera.xmag = camera.ymag = 1;
+  const Vec3f eye(0, 4, 0), right(1, 0, 0), up(0, 0, -1), back(0, 1, 0);
+  for (int r = 0; r < 3; ++r) {
+    camera.to_world.m[r][0] = right[r];
+    camera.to_world.m[r][1] = up[r];
+    camera.to_world.m[r][2] = back[r];
+    camera.to_world.m[r][3] = eye[r];
+  }
+  constexpr int n = 16;
+  for (const IntegratorKind integrator : {IntegratorKind::light, IntegratorKind::bdpt}) {
+    INFO((integrator == IntegratorKind::light ? "light tracing" : "bdpt"));
+    test::TestRender r = test::render_rgb(scene, camera, n, n, 2048, 1, 1, 0, integrator);
+    CHECK(r.stats.invalid_samples == 0);
+    // Pixel by pixel divided by the expected radiance (E averaged over 8 × 8 points of the pixel).
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        double E = 0;
+        for (int i = 0; i < 8; ++i)
+          for (int j = 0; j < 8; ++j) {
+            const Vec3d p(-1 + 2 * (x + (i + 0.5) / 8) / n, 0, -1 + 2 * (y + (j + 0.5) / 8) / n);
+            const Vec3d d = Vec3d(light) - p;
+            E += kIntensity * d.y / (length(d) * length_squared(d));
+          }
+        const double expected = kAlbedo * (E / 64) / kPi;
+        for (int c = 0; c < 3; ++c) r.rgb[(size_t(y) * n + x) * 3 + c] /= float(expected);
+      }
+    test::check_mean(r, 0, 0, n, n, 1.0, 0.02);
+    test::check_mean(r, 0, 0, n / 2, n / 2, 1.0, 0.04);  // a quadrant: the splats land where they belong
+  }
+}
+
+TEST_CASE("bdpt and light tracing agree with the path tracer on the default scene without metal and glass") {
+  const Scene scene = walls_only_cornell();
+  const CameraDesc& camera = scene.cameras.at(0);
+  const auto path = test::render_rgb(scene, camera, 24, 24, 256, 16, 1);
+  const auto bdpt = test::render_rgb(scene, camera, 24, 24, 128, 16, 2, 0, IntegratorKind::bdpt);
+  CHECK(bdpt.stats.invalid_samples == 0);
+  check_agree(bdpt, path, 0.02);
+  const auto light = test::render_rgb(scene, camera, 24, 24, 128, 16, 3, 0, IntegratorKind::light);
+  check_agree(light, path, 0.05);
+}
+
+TEST_CASE("bdpt agrees with the path tracer on a point-lit diffuse scene with an environment") {
+  Scene scene;
+  scene.materials.push_back(test::diffuse({0.7f, 0.4f, 0.2f}));
+  scene.materials.push_back(test::diffuse({0.5f, 0.5f, 0.5f}, "floor"));
+  test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 2, 0));
+  test::add_mesh(scene, test::make_quad({-4, -1, -4}, {0, 0, 8}, {8, 0, 0}, 1));
+  scene.point_lights.push_back({"lamp", {2, 2, 2}, RgbIlluminantSpectrum(Rgb{10, 10, 10})});
+  scene.environment = RgbIlluminantSpectrum(Rgb{0.2f, 0.3f, 0.5f});
+  const auto camera = test::look_at({0, 1, 4}, {0, 0, 0}, 50.f);
+  const auto path = test::render_rgb(scene, camera, 24, 24, 256, 16, 1);
+  const auto bdpt = test::render_rgb(scene, camera, 24, 24, 128, 16, 2, 0, IntegratorKind::bdpt);
+  CHECK(bdpt.stats.invalid_samples == 0);
+  check_agree(bdpt, path, 0.02);
+}
+
+TEST_CASE("bdpt images, splats included, are identical at 1 and 2 threads") {
+  const Scene scene = load_gltf(std::filesystem::path(PRISM_SOURCE_DIR) / "data/scenes/cornell.gltf");
+  const CameraDesc& camera = scene.cameras.at(0);
+  const auto one = test::render_rgb(scene, camera, 24, 24, 4, 16, 7, 1, IntegratorKind::bdpt);
+  const auto two = test::render_rgb(scene, camera, 24, 24, 4, 16, 7, 2, IntegratorKind::bdpt);
+  CHECK(one.rgb == two.rgb);
+  CHECK(one.mean(1) > 0);
+}
+
+TEST_CASE("bdpt renders the stress scenes and the dispersive prism with no NaN or Inf") {
+  log::set_level(log::Level::quiet);
+  const std::filesystem::path dir(PRISM_SOURCE_DIR "/data/scenes");
+  for (const auto& file :
+       {dir / "dispersion.gltf", dir / "cornell.gltf", dir / "stress/extreme_absorption.gltf",
+        dir / "stress/extreme_ior.gltf", dir / "stress/room_tiny.gltf", dir / "stress/room_huge.gltf",
+        dir / "stress/room_far.gltf", dir / "stress/room_slivers.gltf", dir / "stress/tiny_bright_light.gltf"}) {
+    INFO(file.string());
+    Scene scene = load_gltf(file);
+    if (scene.point_lights.empty() && !scene.environment) scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
+    const auto img = test::render_rgb(scene, scene.cameras.at(0), 16, 16, 8, 1000, 1, 0, IntegratorKind::bdpt);
+    CHECK(img.stats.invalid_samples == 0);
+    for (float v : img.rgb) REQUIRE(std::isfinite(v));
+  }
+  log::set_level(log::Level::info);
+}
