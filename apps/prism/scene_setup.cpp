@@ -86,6 +86,8 @@ const char* integrator_name(IntegratorKind kind) {
       return "path";
     case IntegratorKind::bdpt:
       return "bdpt";
+    case IntegratorKind::vcm:
+      return "vcm";
     case IntegratorKind::light:
       return "light";
     case IntegratorKind::whitted:
@@ -148,13 +150,17 @@ void add_render_options(CLI::App* cmd, RenderOptions& options) {
       ->default_val(16)
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--integrator", options.integrator,
-                  "path: unidirectional path tracing; bdpt: bidirectional path tracing; light: light tracing "
-                  "alone; whitted: recursive Fresnel splitting")
+                  "path: unidirectional path tracing; bdpt: bidirectional path tracing; vcm: bdpt with vertex "
+                  "merging; light: light tracing alone; whitted: recursive Fresnel splitting")
       ->transform(CLI::CheckedTransformer(std::map<std::string, IntegratorKind>{{"path", IntegratorKind::path},
                                                                                 {"bdpt", IntegratorKind::bdpt},
+                                                                                {"vcm", IntegratorKind::vcm},
                                                                                 {"light", IntegratorKind::light},
                                                                                 {"whitted", IntegratorKind::whitted}}))
       ->default_str("path");
+  cmd->add_option("--merge-radius", options.merge_radius,
+                  "vcm: initial photon merging radius in scene units (default: 0.005 x the scene's bounding radius)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--wavelengths", options.wavelengths, "Wavelengths carried per path (1, 4 or 8)")
       ->default_val(kDefaultWavelengths)
       ->check(CLI::IsMember({1, 4, 8}));

@@ -36,7 +36,8 @@ MediumStack segment_media(MediumStack media, const SurfaceInteraction& si, const
 // adjoint BSDF; its non-specular vertices are kept for connections.
 template <int N>
 void trace_light_path(const BdptScene& scene, SampledWavelengths<N>& lambda, Sampler& sampler,
-                      const PathOptions& options, RayCounters& counters, std::vector<LightVertex<N>>& vertices) {
+                      const PathOptions& options, const MisFactors& factors, RayCounters& counters,
+                      std::vector<LightVertex<N>>& vertices) {
   vertices.clear();
   const World& world = scene.world;
   const PowerLightSampler& lights = world.light_sampler();
@@ -58,6 +59,7 @@ void trace_light_path(const BdptScene& scene, SampledWavelengths<N>& lambda, Sam
   const float direct_pdf = pick * (is_delta(light) ? 1.f : finite ? e->pdf_pos : e->pdf_dir);
   SampledSpectrum<N> beta = e->Le * (e->cos_light / emission_pdf);
   MisSums m{mis(direct_pdf / emission_pdf), is_delta(light) ? 0.f : mis((finite ? e->cos_light : 1.f) / emission_pdf)};
+  m.vm = m.vc * factors.vc;
   const float beta0 = beta.max();
   Ray ray = e->ray;
   MediumStack media;
@@ -87,7 +89,8 @@ void trace_light_path(const BdptScene& scene, SampledWavelengths<N>& lambda, Sam
     // delta lobe's value takes it back; the others are the BSDF with its arguments exchanged.
     const SampledSpectrum<N> f = bs->specular ? bs->f * sqr(bs->eta) : bsdf_f(v.bsdf, bs->wi, v.wo);
     beta *= f * (abs_cos_theta(v.wo) * abs_dot(si->n, wi) / (abs_dot(si->n, si->wo) * bs->pdf));
-    m.scatter(bs->pdf, bs->specular ? bs->pdf : bsdf_pdf(v.bsdf, bs->wi, v.wo), abs_dot(si->n, wi), bs->specular);
+    m.scatter(bs->pdf, bs->specular ? bs->pdf : bsdf_pdf(v.bsdf, bs->wi, v.wo), abs_dot(si->n, wi), bs->specular,
+              factors);
     ray = si->spawn(wi);
     if (bs->transmission && scene.media) media.cross(material, entering);
 
@@ -104,8 +107,9 @@ void trace_light_path(const BdptScene& scene, SampledWavelengths<N>& lambda, Sam
 // s = 1: a light sample seen from camera vertex si (Georgiev et al. 2012 eqs. 43–45).
 template <int N>
 SampledSpectrum<N> connect_light(const BdptScene& scene, const SurfaceInteraction& si, const Frame& frame,
-                                 const Bsdf<N>& bsdf, const Vec3f& wo, const MisSums& m, const MediumStack& media,
-                                 const SampledWavelengths<N>& lambda, Sampler& sampler, RayCounters& counters) {
+                                 const Bsdf<N>& bsdf, const Vec3f& wo, const MisSums& m, const MisFactors& factors,
+                                 const MediumStack& media, const SampledWavelengths<N>& lambda, Sampler& sampler,
+                                 RayCounters& counters) {
   const float u_light = sampler.get_1d();
   const Vec2f u = sampler.get_2d();
   const PowerLightSampler& lights = scene.world.light_sampler();
@@ -135,7 +139,7 @@ SampledSpectrum<N> connect_light(const BdptScene& scene, const SurfaceInteractio
   const float bsdf_dir = is_delta(light) ? 0.f : bsdf_pdf(bsdf, wo, wi);
   const float w_light = mis(bsdf_dir / (pick * direct_pdf));
   const float w_camera = mis(emission_pdf * abs_dot(si.n, s->wi) / (direct_pdf * cos_light)) *
-                         (m.vcm + m.vc * mis(bsdf_pdf(bsdf, wi, wo)));
+                         m.connection(bsdf_pdf(bsdf, wi, wo), factors);
   ++counters.shadow;
   if (scene.world.occluded(s->shadow_ray)) return SampledSpectrum<N>(0.f);
   SampledSpectrum<N> c = f * s->L / (pick * s->pdf * (1.f + w_light + w_camera));
@@ -146,9 +150,9 @@ SampledSpectrum<N> connect_light(const BdptScene& scene, const SurfaceInteractio
 // s ≥ 2, t ≥ 2: camera vertex si joined to light vertex v (eqs. 40–42).
 template <int N>
 SampledSpectrum<N> connect_vertices(const BdptScene& scene, const SurfaceInteraction& si, const Frame& frame,
-                                    const Bsdf<N>& bsdf, const Vec3f& wo, const MisSums& m, const MediumStack& media,
-                                    const LightVertex<N>& v, const SampledWavelengths<N>& lambda,
-                                    RayCounters& counters) {
+                                    const Bsdf<N>& bsdf, const Vec3f& wo, const MisSums& m, const MisFactors& factors,
+                                    const MediumStack& media, const LightVertex<N>& v,
+                                    const SampledWavelengths<N>& lambda, RayCounters& counters) {
   const Vec3f d = v.si.p - si.p;
   const float dist2 = length_squared(d);
   if (!(dist2 > 0.f)) return SampledSpectrum<N>(0.f);
@@ -161,8 +165,8 @@ SampledSpectrum<N> connect_vertices(const BdptScene& scene, const SurfaceInterac
   // Each side's density of making the other's vertex, as an area density there.
   const float camera_pdf = bsdf_pdf(bsdf, wo, wi) * abs_dot(v.si.n, w) / dist2;
   const float light_pdf = bsdf_pdf(v.bsdf, v.wo, wl) * abs_dot(si.n, w) / dist2;
-  const float w_light = mis(camera_pdf) * (v.mis.vcm + v.mis.vc * mis(bsdf_pdf(v.bsdf, wl, v.wo)));
-  const float w_camera = mis(light_pdf) * (m.vcm + m.vc * mis(bsdf_pdf(bsdf, wi, wo)));
+  const float w_light = mis(camera_pdf) * v.mis.connection(bsdf_pdf(v.bsdf, wl, v.wo), factors);
+  const float w_camera = mis(light_pdf) * m.connection(bsdf_pdf(bsdf, wi, wo), factors);
   ++counters.shadow;
   if (scene.world.occluded(spawn_ray_to(si.p, si.p_error, si.n, v.si.p, v.si.p_error, v.si.n)))
     return SampledSpectrum<N>(0.f);
@@ -174,8 +178,9 @@ SampledSpectrum<N> connect_vertices(const BdptScene& scene, const SurfaceInterac
 // t = 1: light vertex v seen by the camera, splatted where it lands on the film (eqs. 46–47):
 // β · f · |cos| · (camera ray density across the ray at v) / (light paths per pixel sample).
 template <int N>
-void splat_to_camera(const BdptScene& scene, const LightVertex<N>& v, const SampledWavelengths<N>& lambda,
-                     SplatBuffer& splats, RayCounters& counters, uint64_t& invalid) {
+void splat_to_camera(const BdptScene& scene, const LightVertex<N>& v, const MisFactors& factors,
+                     const SampledWavelengths<N>& lambda, SplatBuffer& splats, RayCounters& counters,
+                     uint64_t& invalid) {
   const auto c = scene.camera.connect(v.si.p);
   if (!c) return;
   const Vec3f wl = v.frame.to_local(c->w);
@@ -183,7 +188,7 @@ void splat_to_camera(const BdptScene& scene, const LightVertex<N>& v, const Samp
   const SampledSpectrum<N> f = v.adjoint_f(wl, c->w);
   if (f.is_zero()) return;
   const float camera_pdf = c->importance * abs_dot(v.si.n, c->w);  // an area density at v
-  const float w_light = mis(camera_pdf / scene.light_paths) * (v.mis.vcm + v.mis.vc * mis(bsdf_pdf(v.bsdf, wl, v.wo)));
+  const float w_light = mis(camera_pdf / scene.light_paths) * v.mis.connection(bsdf_pdf(v.bsdf, wl, v.wo), factors);
   ++counters.shadow;
   if (scene.world.occluded(spawn_ray_to(v.si.p, v.si.p_error, v.si.n, c->point, {}, {}))) return;
   const float weight = scene.light_tracing ? 1.f : 1.f / (1.f + w_light);
@@ -194,16 +199,30 @@ void splat_to_camera(const BdptScene& scene, const LightVertex<N>& v, const Samp
 }  // namespace
 
 template <int N>
-SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, SampledWavelengths<N>& lambda, Sampler& sampler,
-                                 const PathOptions& options, SplatBuffer& splats, RayCounters& counters,
-                                 uint64_t& invalid) {
+void trace_photons(const BdptScene& scene, SampledWavelengths<N> lambda, Sampler& sampler, const PathOptions& options,
+                   const MisFactors& factors, RayCounters& counters, std::vector<Vec3f>& positions,
+                   std::vector<Photon<N>>& photons) {
   thread_local std::vector<LightVertex<N>> light;
-  trace_light_path(scene, lambda, sampler, options, counters, light);
+  trace_light_path(scene, lambda, sampler, options, factors, counters, light);
+  for (const LightVertex<N>& v : light) {
+    positions.push_back(v.si.p);
+    photons.push_back({v.beta, v.si.wo, v.mis.vcm, v.mis.vm, v.length, lambda.secondary_terminated()});
+  }
+}
+
+template <int N>
+SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, SampledWavelengths<N>& lambda, Sampler& sampler,
+                                 const PathOptions& options, const VcmIteration<N>* vcm, SplatBuffer& splats,
+                                 RayCounters& counters, uint64_t& invalid) {
+  const MisFactors factors = vcm ? vcm->factors() : MisFactors{};
+  thread_local std::vector<LightVertex<N>> light;
+  trace_light_path(scene, lambda, sampler, options, factors, counters, light);
 
   const World& world = scene.world;
   const PowerLightSampler& lights = world.light_sampler();
   SampledSpectrum<N> L(0.f), beta(1.f);
-  MisSums m{mis(scene.light_paths / scene.camera.ray_density(ray)), 0.f};
+  SampledSpectrum<N> merged_hero(0.f);  // merges with hero-only photons (vcm.h)
+  MisSums m{mis(scene.light_paths / scene.camera.ray_density(ray)), 0.f, 0.f};
   float eta_scale = 1.f;  // Π η² of the refractions so far: undoes radiance scaling for roulette
   MediumStack media;
   // s = 0: a light the camera path reached; full weight when seen directly (eq. 38).
@@ -242,11 +261,16 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, SampledWavelen
     const Frame frame = si->shading_frame();
     const Vec3f wo = frame.to_local(si->wo);
     if (!bsdf_is_specular(bsdf)) {
-      L += beta * connect_light(scene, *si, frame, bsdf, wo, m, media, lambda, sampler, counters);
+      L += beta * connect_light(scene, *si, frame, bsdf, wo, m, factors, media, lambda, sampler, counters);
       // Paths of at most max_depth + 1 segments, as the path tracer's.
       for (const LightVertex<N>& v : light) {
         if (v.length + depth + 2 > options.max_depth + 1) break;
-        L += beta * connect_vertices(scene, *si, frame, bsdf, wo, m, media, v, lambda, counters);
+        L += beta * connect_vertices(scene, *si, frame, bsdf, wo, m, factors, media, v, lambda, counters);
+      }
+      if (vcm) {
+        SampledSpectrum<N> all(0.f), hero(0.f);
+        vcm->merge(*si, frame, bsdf, wo, m, depth, options.max_depth, all, hero);
+        L += beta * all, merged_hero += beta * hero;
       }
     }
 
@@ -256,7 +280,7 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, SampledWavelen
     const Vec3f wi = frame.to_world(bs->wi);
     if (wrong_side(*si, wi, bs->transmission)) break;
     beta *= bs->f * (abs_cos_theta(bs->wi) / bs->pdf);
-    m.scatter(bs->pdf, bs->specular ? bs->pdf : bsdf_pdf(bsdf, bs->wi, wo), abs_dot(si->n, wi), bs->specular);
+    m.scatter(bs->pdf, bs->specular ? bs->pdf : bsdf_pdf(bsdf, bs->wi, wo), abs_dot(si->n, wi), bs->specular, factors);
     ray = si->spawn(wi);
     if (bs->transmission) {
       eta_scale *= sqr(bs->eta);
@@ -270,14 +294,19 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, SampledWavelen
     if (beta.is_zero()) break;
   }
 
+  // Hero-only merges count in the hero lane, N times over while the lanes are all alive.
+  L[0] += merged_hero[0] * (lambda.secondary_terminated() ? 1.f : float(N));
   // t = 1, with the wavelengths as both subpaths left them.
-  for (const LightVertex<N>& v : light) splat_to_camera(scene, v, lambda, splats, counters, invalid);
+  for (const LightVertex<N>& v : light) splat_to_camera(scene, v, factors, lambda, splats, counters, invalid);
   return L;
 }
 
-#define PRISM_INSTANTIATE(N)                                                                            \
-  template SampledSpectrum<N> bdpt_radiance<N>(const BdptScene&, Ray, SampledWavelengths<N>&, Sampler&, \
-                                               const PathOptions&, SplatBuffer&, RayCounters&, uint64_t&);
+#define PRISM_INSTANTIATE(N)                                                                                           \
+  template SampledSpectrum<N> bdpt_radiance<N>(const BdptScene&, Ray, SampledWavelengths<N>&, Sampler&,                \
+                                               const PathOptions&, const VcmIteration<N>*, SplatBuffer&, RayCounters&, \
+                                               uint64_t&);                                                             \
+  template void trace_photons<N>(const BdptScene&, SampledWavelengths<N>, Sampler&, const PathOptions&,                \
+                                 const MisFactors&, RayCounters&, std::vector<Vec3f>&, std::vector<Photon<N>>&);
 PRISM_INSTANTIATE(1)
 PRISM_INSTANTIATE(4)
 PRISM_INSTANTIATE(8)

@@ -17,6 +17,7 @@
 #include "render/path_integrator.h"
 #include "render/ray_counters.h"
 #include "render/splat_buffer.h"
+#include "render/vcm.h"
 #include "render/world.h"
 
 namespace prism {
@@ -33,11 +34,19 @@ struct BdptScene {
   BdptScene(const World& world, const Camera& camera, bool media, bool light_tracing = false);
 };
 
-// The camera sample's estimate along `ray` (its own pixel's share), and its light path's splats.
-// Returns the number of dropped (NaN, Inf) splats through `invalid`.
+// The camera sample's estimate along `ray` (its own pixel's share), and its light path's splats;
+// with `vcm`, merging with the iteration's photons too (vcm.h). Counts dropped (NaN, Inf)
+// splats in `invalid`.
 template <int N>
 SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, SampledWavelengths<N>& lambda, Sampler& sampler,
-                                 const PathOptions& options, SplatBuffer& splats, RayCounters& counters,
-                                 uint64_t& invalid);
+                                 const PathOptions& options, const VcmIteration<N>* vcm, SplatBuffer& splats,
+                                 RayCounters& counters, uint64_t& invalid);
+
+// The photons of the light path that bdpt_radiance traces for the same sampler state (the
+// pixel sample's), for an iteration of VCM with these factors: appended to positions, photons.
+template <int N>
+void trace_photons(const BdptScene& scene, SampledWavelengths<N> lambda, Sampler& sampler, const PathOptions& options,
+                   const MisFactors& factors, RayCounters& counters, std::vector<Vec3f>& positions,
+                   std::vector<Photon<N>>& photons);
 
 }  // namespace prism

@@ -44,26 +44,69 @@ struct CameraSample {
   Ray ray;
 };
 
-// The bidirectional estimator's scene and one splat buffer per thread (bidirectional renders only).
+// The bidirectional estimator's scene, the thread's splat buffer, and for VCM the iteration's
+// photons and wavelengths (bidirectional renders only).
+template <int N>
 struct Splatting {
   const BdptScene* scene = nullptr;
   SplatBuffer* splats = nullptr;
+  const VcmIteration<N>* vcm = nullptr;
+  const SampledWavelengths<N>* lambda = nullptr;
   uint64_t invalid = 0;
 };
+
+// The wavelengths every path of VCM iteration s carries (vcm.h), stratified over iterations.
+template <int N>
+SampledWavelengths<N> iteration_wavelengths(const RenderOptions& options, int s) {
+  Sampler sampler(options.seed, options.sampler);
+  sampler.start_pixel_sample({-1, -1}, s);
+  return SampledWavelengths<N>::sample(sampler.get_2d());
+}
+
+// VCM iteration s: the photons of every pixel's light path for sample s, in tile order.
+template <int N>
+VcmIteration<N> trace_iteration(const BdptScene& scene, const RenderOptions& options, int s,
+                                const SampledWavelengths<N>& lambda, int tiles_x, int tiles_y, RayCounters& rays) {
+  const float r0 = options.merge_radius > 0 ? options.merge_radius : kMergeRadius * scene.disk.radius;
+  const float radius = VcmIteration<N>::radius(r0, s + 1);
+  const MisFactors factors = MisFactors::vcm(radius, scene.light_paths);
+  const int64_t tiles = int64_t(tiles_x) * tiles_y;
+  std::vector<std::vector<Vec3f>> positions(tiles);
+  std::vector<std::vector<Photon<N>>> photons(tiles);
+  std::vector<RayCounters> counters(tiles);
+  parallel_for(tiles, [&](int64_t t) {
+    Sampler sampler(options.seed, options.sampler);
+    const int x0 = int(t % tiles_x) * kTileSize, y0 = int(t / tiles_x) * kTileSize;
+    for (int y = y0; y < std::min(y0 + kTileSize, scene.camera.height()); ++y)
+      for (int x = x0; x < std::min(x0 + kTileSize, scene.camera.width()); ++x) {
+        sampler.start_pixel_sample({x, y}, s);
+        trace_photons<N>(scene, lambda, sampler, options.path, factors, counters[t], positions[t], photons[t]);
+      }
+  });
+  std::vector<Vec3f> all_positions;
+  std::vector<Photon<N>> all_photons;
+  for (int64_t t = 0; t < tiles; ++t) {
+    all_positions.insert(all_positions.end(), positions[t].begin(), positions[t].end());
+    all_photons.insert(all_photons.end(), photons[t].begin(), photons[t].end());
+    rays += counters[t];
+  }
+  return VcmIteration<N>(std::move(all_positions), std::move(all_photons), radius, scene.light_paths);
+}
 
 // The body of the render: sample s of a pixel, from the sampler's stream for (pixel, s, seed)
 // alone, through the camera and the radiance estimator to CIE XYZ.
 template <int N>
 CameraSample<N> camera_sample(const World& world, const Camera& camera, const RenderOptions& options,
-                              RadianceFn<N> radiance, Splatting& bdpt, Sampler& sampler, Vec2i pixel, int s,
+                              RadianceFn<N> radiance, Splatting<N>& bdpt, Sampler& sampler, Vec2i pixel, int s,
                               RayCounters& rays) {
   sampler.start_pixel_sample(pixel, s);
   const Vec2f jitter = sampler.get_2d();
   CameraSample<N> c{SampledWavelengths<N>::sample(sampler.get_2d()), {}, {}, {}};
+  if (bdpt.lambda) c.lambda = *bdpt.lambda;
   c.ray = camera.generate_ray(float(pixel.x) + jitter.x, float(pixel.y) + jitter.y);
-  c.L = bdpt.scene
-            ? bdpt_radiance<N>(*bdpt.scene, c.ray, c.lambda, sampler, options.path, *bdpt.splats, rays, bdpt.invalid)
-            : radiance(world, c.ray, c.lambda, sampler, options.path, rays);
+  c.L = bdpt.scene ? bdpt_radiance<N>(*bdpt.scene, c.ray, c.lambda, sampler, options.path, bdpt.vcm, *bdpt.splats, rays,
+                                      bdpt.invalid)
+                   : radiance(world, c.ray, c.lambda, sampler, options.path, rays);
   c.xyz = to_xyz(c.L, c.lambda);
   return c;
 }
@@ -97,7 +140,7 @@ struct PassStats {
 // Takes every active pixel of the tile at (x0, y0) from the samples it has to `end`.
 template <int N>
 void render_tile(const World& world, const Camera& camera, const RenderOptions& options, RadianceFn<N> radiance,
-                 Splatting bdpt, int x0, int y0, int end, const std::vector<uint8_t>& active, Film& film,
+                 Splatting<N> bdpt, int x0, int y0, int end, const std::vector<uint8_t>& active, Film& film,
                  PassStats& stats) {
   Sampler sampler(options.seed, options.sampler);
   const bool first_hits = options.aovs & (kAovAlbedo | kAovNormal | kAovDepth);
@@ -126,7 +169,8 @@ template <int N>
 RenderResult render_with(const World& world, const Camera& camera, const RenderOptions& options,
                          const RenderControl& control, std::optional<RenderState> resume) {
   const RadianceFn<N> radiance = radiance_estimator<N>(world, options);
-  const bool bidirectional = options.integrator == IntegratorKind::bdpt || options.integrator == IntegratorKind::light;
+  const bool bidirectional =
+      options.integrator != IntegratorKind::path && options.integrator != IntegratorKind::whitted;
   std::optional<BdptScene> bdpt_scene;
   std::optional<ThreadSplats> splats;
   if (bidirectional) {
@@ -164,19 +208,33 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
         break;
       }
     }
-    parallel_for(int64_t(tiles_x) * tiles_y, [&](int64_t tile) {
-      PassStats ps;
-      const Splatting bdpt{bdpt_scene ? &*bdpt_scene : nullptr, splats ? &splats->local() : nullptr};
-      render_tile<N>(world, camera, options, radiance, bdpt, int(tile % tiles_x) * kTileSize,
-                     int(tile / tiles_x) * kTileSize, end, active, state.film, ps);
-      {
-        std::lock_guard lock(stats_mutex);
-        state.stats.rays += ps.rays;
-        state.stats.samples += ps.samples;
-        state.stats.invalid_samples += ps.invalid;
+    // Every active pixel to `to` samples; the progress bar advances on the pass's last round.
+    const auto render_tiles = [&](int to, const VcmIteration<N>* vcm, const SampledWavelengths<N>* lambda, bool last) {
+      parallel_for(int64_t(tiles_x) * tiles_y, [&](int64_t tile) {
+        PassStats ps;
+        const Splatting<N> bdpt{bdpt_scene ? &*bdpt_scene : nullptr, splats ? &splats->local() : nullptr, vcm, lambda};
+        render_tile<N>(world, camera, options, radiance, bdpt, int(tile % tiles_x) * kTileSize,
+                       int(tile / tiles_x) * kTileSize, to, active, state.film, ps);
+        {
+          std::lock_guard lock(stats_mutex);
+          state.stats.rays += ps.rays;
+          state.stats.samples += ps.samples;
+          state.stats.invalid_samples += ps.invalid;
+        }
+        if (last) progress.advance();
+      });
+    };
+    if (options.integrator == IntegratorKind::vcm) {
+      // One VCM iteration per sample index: all light paths and their photons first.
+      for (int s = options.sample_begin + int(state.film.samples(0)); s < end; ++s) {
+        const SampledWavelengths<N> lambda = iteration_wavelengths<N>(options, s);
+        const VcmIteration<N> iteration =
+            trace_iteration<N>(*bdpt_scene, options, s, lambda, tiles_x, tiles_y, state.stats.rays);
+        render_tiles(s + 1, &iteration, &lambda, s + 1 == end);
       }
-      progress.advance();
-    });
+    } else {
+      render_tiles(end, nullptr, nullptr, true);
+    }
     if (splats)
       for (SplatBuffer& b : *splats) {
         state.film.add_splats(b.sums());
@@ -228,7 +286,7 @@ RenderResult render(const World& world, const Camera& camera, const RenderOption
          camera.height());
   if (options.noise_threshold > 0 && (options.sample_begin > 0 || !c.empty()))
     fail("adaptive sampling (a noise threshold) cannot be split into sample ranges or crop windows");
-  if ((options.integrator == IntegratorKind::bdpt || options.integrator == IntegratorKind::light) &&
+  if (options.integrator != IntegratorKind::path && options.integrator != IntegratorKind::whitted &&
       (options.noise_threshold > 0 || !c.empty() || options.spectral_bins.count() > 0))
     fail(
         "the bidirectional integrators splat light paths over the whole frame: it takes no noise threshold, crop "

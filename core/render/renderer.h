@@ -18,8 +18,12 @@
 
 namespace prism {
 
-// bdpt: bidirectional path tracing (bdpt.h); light: its light-tracing strategy alone (a check).
-enum class IntegratorKind { path, whitted, bdpt, light };
+// bdpt: bidirectional path tracing (bdpt.h); vcm: with vertex merging (vcm.h); light: the
+// light-tracing strategy alone (a check).
+enum class IntegratorKind { path, whitted, bdpt, vcm, light };
+
+// VCM's initial merging radius when none is given, as a fraction of the scene's bounding radius.
+constexpr float kMergeRadius = 0.005f;
 
 // A window of pixels [x0, x1) × [y0, y1) of the frame; empty: the whole frame.
 struct PixelWindow {
@@ -47,6 +51,7 @@ struct RenderOptions {
   int wavelengths = kDefaultWavelengths;  // per path: 1, 4 or 8
   SamplerKind sampler = SamplerKind::sobol;
   PathOptions path;
+  float merge_radius = 0;  // VCM's initial merging radius (scene units); 0: kMergeRadius × the scene's radius
   std::optional<PathFeatures> features;  // default: what the scene needs (benchmarks force more)
   double noise_threshold = 0;            // adaptive sampling (adaptive_sampling.h); 0: off
   double time_limit = 0;                 // seconds; stop after the pass that reaches it; 0: none

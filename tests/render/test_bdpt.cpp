@@ -1,4 +1,5 @@
-// Bidirectional path tracing (core/render/bdpt.h) against scenes of known answer and against the
+// Bidirectional path tracing (core/render/bdpt.h) and vertex connection and merging (vcm.h)
+// against scenes of known answer and against the
 // path tracer on scenes it renders well (no caustics); light tracing alone (the t = 1 strategy)
 // against the analytic irradiance of a point light; determinism across thread counts; no NaN or
 // Inf on the stress scenes.
@@ -108,6 +109,9 @@ TEST_CASE("bdpt and light tracing agree with the path tracer on the default scen
   check_agree(bdpt, path, 0.02);
   const auto light = test::render_rgb(scene, camera, 24, 24, 128, 16, 3, 0, IntegratorKind::light);
   check_agree(light, path, 0.05);
+  const auto vcm = test::render_rgb(scene, camera, 24, 24, 128, 16, 4, 0, IntegratorKind::vcm);
+  CHECK(vcm.stats.invalid_samples == 0);
+  check_agree(vcm, path, 0.02);
 }
 
 TEST_CASE("bdpt agrees with the path tracer on a point-lit diffuse scene with an environment") {
@@ -125,16 +129,18 @@ TEST_CASE("bdpt agrees with the path tracer on a point-lit diffuse scene with an
   check_agree(bdpt, path, 0.02);
 }
 
-TEST_CASE("bdpt images, splats included, are identical at 1 and 2 threads") {
+TEST_CASE("bdpt and vcm images, splats and photons included, are identical at 1 and 2 threads") {
   const Scene scene = load_gltf(std::filesystem::path(PRISM_SOURCE_DIR) / "data/scenes/cornell.gltf");
   const CameraDesc& camera = scene.cameras.at(0);
-  const auto one = test::render_rgb(scene, camera, 24, 24, 4, 16, 7, 1, IntegratorKind::bdpt);
-  const auto two = test::render_rgb(scene, camera, 24, 24, 4, 16, 7, 2, IntegratorKind::bdpt);
-  CHECK(one.rgb == two.rgb);
-  CHECK(one.mean(1) > 0);
+  for (const IntegratorKind integrator : {IntegratorKind::bdpt, IntegratorKind::vcm}) {
+    const auto one = test::render_rgb(scene, camera, 24, 24, 4, 16, 7, 1, integrator);
+    const auto two = test::render_rgb(scene, camera, 24, 24, 4, 16, 7, 2, integrator);
+    CHECK(one.rgb == two.rgb);
+    CHECK(one.mean(1) > 0);
+  }
 }
 
-TEST_CASE("bdpt renders the stress scenes and the dispersive prism with no NaN or Inf") {
+TEST_CASE("bdpt and vcm render the stress scenes and the dispersive prism with no NaN or Inf") {
   log::set_level(log::Level::quiet);
   const std::filesystem::path dir(PRISM_SOURCE_DIR "/data/scenes");
   for (const auto& file :
@@ -144,9 +150,11 @@ TEST_CASE("bdpt renders the stress scenes and the dispersive prism with no NaN o
     INFO(file.string());
     Scene scene = load_gltf(file);
     if (scene.point_lights.empty() && !scene.environment) scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
-    const auto img = test::render_rgb(scene, scene.cameras.at(0), 16, 16, 8, 1000, 1, 0, IntegratorKind::bdpt);
-    CHECK(img.stats.invalid_samples == 0);
-    for (float v : img.rgb) REQUIRE(std::isfinite(v));
+    for (const IntegratorKind integrator : {IntegratorKind::bdpt, IntegratorKind::vcm}) {
+      const auto img = test::render_rgb(scene, scene.cameras.at(0), 16, 16, 8, 1000, 1, 0, integrator);
+      CHECK(img.stats.invalid_samples == 0);
+      for (float v : img.rgb) REQUIRE(std::isfinite(v));
+    }
   }
   log::set_level(log::Level::info);
 }
