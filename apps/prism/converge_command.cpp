@@ -1,7 +1,8 @@
 // `prism converge SCENE --reference REF.exr --out DIR`: the error of several rendering
 // configurations against a reference image as their sample budgets double, written as
 // DIR/convergence.csv, DIR/convergence.png (error against seconds, log-log) and DIR/summary.md
-// (the time each configuration needs to reach a stated error).
+// (the time each configuration needs to reach a stated error). With --seconds S, each renders
+// for S seconds instead and DIR/equal_time.csv and DIR/summary.md compare their errors then.
 
 #include <cmath>
 #include <filesystem>
@@ -23,6 +24,9 @@ struct ConvergeArgs {
   std::string reference, out;
   int max_spp = 256, reference_spp = 4096, max_depth = 16, threads = 0;
   uint64_t seed = 0;
+  std::vector<std::string> integrators;  // one configuration each (default: the baseline and its variations)
+  std::string reference_integrator = "path";
+  double seconds = 0;  // equal-time comparison: each configuration renders this long
 };
 
 struct Configuration {
@@ -38,7 +42,15 @@ std::vector<Configuration> configurations(const ConvergeArgs& args) {
   base.threads = args.threads;
   base.seed = args.seed;
   base.progress = false;
-  std::vector<Configuration> c(7, {"", base});
+  if (!args.integrators.empty()) {
+    std::vector<Configuration> c;
+    for (const std::string& name : args.integrators) {
+      c.push_back({name, base});
+      c.back().options.integrator = integrator_kinds().at(name);
+    }
+    return c;
+  }
+  std::vector<Configuration> c(8, {"", base});
   c[0].name = "path, 8 wavelengths, NEE+MIS, Sobol";
   c[1].name = "1 wavelength per path";
   c[1].options.wavelengths = 1;
@@ -52,6 +64,8 @@ std::vector<Configuration> configurations(const ConvergeArgs& args) {
   c[5].options.integrator = IntegratorKind::whitted;
   c[6].name = "bdpt";
   c[6].options.integrator = IntegratorKind::bdpt;
+  c[7].name = "vcm";
+  c[7].options.integrator = IntegratorKind::vcm;
   return c;
 }
 
@@ -94,10 +108,11 @@ std::vector<float> reference_image(const ConvergeArgs& args, const PreparedScene
     return ref.rgb;
   }
   RenderOptions options = configurations(args)[0].options;
+  options.integrator = integrator_kinds().at(args.reference_integrator);
   options.spp = args.reference_spp;
   options.progress = true;
   options.seed = args.seed + 1;  // independent of the series' noise
-  log::info("rendering the reference {} at {} spp", args.reference, args.reference_spp);
+  log::info("rendering the reference {} at {} spp ({})", args.reference, args.reference_spp, args.reference_integrator);
   RenderStats stats;
   std::vector<float> rgb = render_rgb(p, options, &stats);
   write_exr(args.reference,
@@ -139,6 +154,50 @@ double mse_per_doubling(const std::vector<Point>& series) {
   return r * r;
 }
 
+// Each configuration for args.seconds, its error then: relative RMSE (RMSE over the reference's
+// mean), also scaled to exactly args.seconds (an unbiased estimator's MSE falls as 1 / time), and
+// which configuration to use for this scene.
+void run_equal_time(const ConvergeArgs& args, const PreparedScene& p, const std::vector<float>& reference,
+                    double reference_mean) {
+  const auto configs = configurations(args);
+  RenderOptions warm_up = configs[0].options;
+  warm_up.spp = 1;
+  render_rgb(p, warm_up);  // untimed: one-time set-up (tables, threads) is no configuration's cost
+  std::ofstream csv(std::filesystem::path(args.out) / "equal_time.csv");
+  csv << "configuration,seconds,spp,relative_rmse,relative_rmse_at_budget,mean_error\n";
+  const double pixels = double(p.camera->width()) * p.camera->height();
+  std::vector<double> scaled;
+  std::ofstream md(std::filesystem::path(args.out) / "summary.md");
+  md << "# Equal time: " << std::filesystem::path(args.scene.scene).filename().string() << "\n\n"
+     << "Image " << p.camera->width() << "x" << p.camera->height() << ", " << args.seconds
+     << " s per configuration, reference `" << args.reference << "` (mean " << reference_mean << "), max depth "
+     << args.max_depth << ". Relative RMSE: RMSE over all pixels and channels (linear Rec.709) over the "
+     << "reference's mean; at budget: scaled by sqrt(seconds / " << args.seconds << ").\n\n"
+     << "| configuration | seconds | samples per pixel | relative RMSE | at budget | x " << configs[0].name
+     << " | mean error |\n|---|---|---|---|---|---|---|\n";
+  for (const Configuration& config : configs) {
+    RenderOptions options = config.options;
+    options.spp = 1 << 20;
+    options.time_limit = args.seconds;
+    RenderStats stats;
+    const Errors e = errors(render_rgb(p, options, &stats), reference);
+    const double relative = e.rmse / reference_mean;
+    scaled.push_back(relative * std::sqrt(stats.seconds / args.seconds));
+    const double spp = double(stats.samples) / pixels;
+    csv << '"' << config.name << "\"," << stats.seconds << ',' << spp << ',' << relative << ',' << scaled.back() << ','
+        << e.mean_error << '\n';
+    log::info("{:<44} {:>8.3f} s {:>8.1f} spp  relative RMSE {:.4f} ({:.4f} at budget)  mean error {:+.5f}",
+              config.name, stats.seconds, spp, relative, scaled.back(), e.mean_error);
+    md << "| " << config.name << " | " << fmt::format("{:.1f}", stats.seconds) << " | " << fmt::format("{:.0f}", spp)
+       << " | " << fmt::format("{:.4f}", relative) << " | " << fmt::format("{:.4f}", scaled.back()) << " | "
+       << fmt::format("{:.3f}", scaled.back() / scaled[0]) << " | " << fmt::format("{:+.3g}", e.mean_error) << " |\n";
+  }
+  const size_t best = size_t(std::min_element(scaled.begin(), scaled.end()) - scaled.begin());
+  md << "\nUse **" << configs[best].name << "** for this scene: the lowest error in " << args.seconds << " s ("
+     << fmt::format("{:.3f}", scaled[best] / scaled[0]) << "x the error of " << configs[0].name << ").\n";
+  std::printf("wrote %s/equal_time.csv, summary.md\n", args.out.c_str());
+}
+
 void run(const ConvergeArgs& args) {
   const PreparedScene p = prepare_scene(args.scene);
   std::filesystem::create_directories(args.out);
@@ -146,6 +205,7 @@ void run(const ConvergeArgs& args) {
   double reference_mean = 0;
   for (float v : reference) reference_mean += v;
   reference_mean /= double(reference.size());
+  if (args.seconds > 0) return run_equal_time(args, p, reference, reference_mean);
 
   std::ofstream csv(std::filesystem::path(args.out) / "convergence.csv");
   csv << "configuration,spp,seconds,rmse,relative_mse,mean_error\n";
@@ -227,6 +287,18 @@ void add_converge_command(CLI::App& app) {
       ->default_val(16)
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")->default_val(0);
+  cmd->add_option("--integrators", args->integrators,
+                  "Compare these integrators (comma-separated: path, bdpt, vcm, light, whitted) instead of the "
+                  "baseline and its variations")
+      ->delimiter(',')
+      ->check(CLI::IsMember(integrator_kinds()));
+  cmd->add_option("--reference-integrator", args->reference_integrator,
+                  "Integrator of a reference this command renders (vcm for caustics)")
+      ->default_val("path")
+      ->check(CLI::IsMember(integrator_kinds()));
+  cmd->add_option("--seconds", args->seconds,
+                  "Equal time: render each configuration this many seconds and compare the errors")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--seed", args->seed, "Random seed")->default_val(0)->check(seed_value());
   cmd->callback([args] { run(*args); });
 }

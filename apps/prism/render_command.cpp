@@ -88,14 +88,14 @@ std::string fingerprint(const RenderArgs& args, const Camera& camera, const Rend
   const SceneArgs& s = args.scene;
   return fmt::format(
       "scene={} scene-hash={:016x} time={} env={} env-map={} env-rotate={} env-scale={} camera={} size={}x{} "
-      "integrator={} "
+      "integrator={} merge-radius={} "
       "seed={} sampler={} "
       "wavelengths={} max-depth={} light-sampling={} noise-threshold={} aovs={} spectral-bins={} "
       "energy-compensation={} gltf-scene={} variant={} animation={}",
       std::filesystem::absolute(s.scene).string(), scene_hash(s.scene), time ? fmt::format("{}", *time) : "-", s.env,
       s.env_map, s.env_rotate, s.env_scale, s.camera, camera.width(), camera.height(), integrator_name(o.integrator),
-      o.seed, sampler_name(o.sampler), o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf",
-      o.noise_threshold, o.aovs, o.spectral_bins.to_string(), s.energy_compensation,
+      o.merge_radius, o.seed, sampler_name(o.sampler), o.wavelengths, o.path.max_depth,
+      o.path.next_event ? "mis" : "bsdf", o.noise_threshold, o.aovs, o.spectral_bins.to_string(), s.energy_compensation,
       s.gltf.scene ? fmt::format("{}", *s.gltf.scene) : "-", s.gltf.variant, s.gltf.animation);
 }
 

@@ -80,6 +80,15 @@ const CLI::Validator& seed_value() {
   return v;
 }
 
+const std::map<std::string, IntegratorKind>& integrator_kinds() {
+  static const std::map<std::string, IntegratorKind> kinds{{"path", IntegratorKind::path},
+                                                           {"bdpt", IntegratorKind::bdpt},
+                                                           {"vcm", IntegratorKind::vcm},
+                                                           {"light", IntegratorKind::light},
+                                                           {"whitted", IntegratorKind::whitted}};
+  return kinds;
+}
+
 const char* integrator_name(IntegratorKind kind) {
   switch (kind) {
     case IntegratorKind::path:
@@ -152,11 +161,7 @@ void add_render_options(CLI::App* cmd, RenderOptions& options) {
   cmd->add_option("--integrator", options.integrator,
                   "path: unidirectional path tracing; bdpt: bidirectional path tracing; vcm: bdpt with vertex "
                   "merging; light: light tracing alone; whitted: recursive Fresnel splitting")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, IntegratorKind>{{"path", IntegratorKind::path},
-                                                                                {"bdpt", IntegratorKind::bdpt},
-                                                                                {"vcm", IntegratorKind::vcm},
-                                                                                {"light", IntegratorKind::light},
-                                                                                {"whitted", IntegratorKind::whitted}}))
+      ->transform(CLI::CheckedTransformer(integrator_kinds()))
       ->default_str("path");
   cmd->add_option("--merge-radius", options.merge_radius,
                   "vcm: initial photon merging radius in scene units (default: 0.005 x the scene's bounding radius)")

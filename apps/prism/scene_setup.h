@@ -1,4 +1,5 @@
 #pragma once
+#include <map>
 // What the commands that render a scene share (render, converge): their command-line options,
 // and loading a scene with its environment, camera and world.
 
@@ -55,6 +56,8 @@ PreparedScene prepare_scene(const SceneArgs& args, bool keep_file = false);
 bool pose_scene(PreparedScene& prepared, const SceneArgs& args, double seconds);
 
 const char* integrator_name(IntegratorKind kind);
+// The --integrator names.
+const std::map<std::string, IntegratorKind>& integrator_kinds();
 const char* sampler_name(SamplerKind kind);
 
 }  // namespace prism
