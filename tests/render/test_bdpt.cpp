@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "base/log.h"
+#include "materials/catalogue.h"
 #include "scene/gltf_loader.h"
 #include "support/test_scenes.h"
 
@@ -35,26 +36,54 @@ Scene walls_only_cornell() {
   return scene;
 }
 
+Material glass(IorModel ior) {
+  return Material{.name = "glass", .kind = PbrMaterial::glass(Dielectric(std::move(ior)))};
+}
+
+// An orthographic camera at height h looking straight down at the square [−s, s]² of y = 0
+// (pixel (i, j) covers x = −s + [i, i + 1]·2s/n, z = −s + [j, j + 1]·2s/n).
+CameraDesc looking_down(float h, float s) {
+  CameraDesc camera;
+  camera.projection = CameraDesc::Projection::orthographic;
+  camera.xmag = camera.ymag = s;
+  const Vec3f eye(0, h, 0), right(1, 0, 0), up(0, 0, -1), back(0, 1, 0);
+  for (int r = 0; r < 3; ++r) {
+    camera.to_world.m[r][0] = right[r];
+    camera.to_world.m[r][1] = up[r];
+    camera.to_world.m[r][2] = back[r];
+    camera.to_world.m[r][3] = eye[r];
+  }
+  return camera;
+}
+
 }  // namespace
 
-TEST_CASE("bdpt: a sphere of albedo 0.5 under a uniform environment of radiance 1 renders 0.5") {
+const IntegratorKind kBidirectional[] = {IntegratorKind::bdpt, IntegratorKind::vcm};
+
+TEST_CASE("bdpt, vcm: a sphere of albedo 0.5 under a uniform environment of radiance 1 renders 0.5") {
   Scene scene;
   scene.materials.push_back(test::diffuse({0.5f, 0.5f, 0.5f}));
   test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 3, 0));
   scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
-  const auto img =
-      test::render_rgb(scene, test::look_at({0, 0, 5.f}, {0, 0, 0}, 30.f), 32, 32, 256, 64, 1, 0, IntegratorKind::bdpt);
-  CHECK(img.stats.invalid_samples == 0);
-  test::check_mean(img, 10, 10, 22, 22, 0.5, 0.02);
-  test::check_mean(img, 0, 0, 32, 3, 1.0, 0.02);  // top rows: sky
+  for (const IntegratorKind integrator : kBidirectional) {
+    INFO((integrator == IntegratorKind::bdpt ? "bdpt" : "vcm"));
+    const auto img =
+        test::render_rgb(scene, test::look_at({0, 0, 5.f}, {0, 0, 0}, 30.f), 32, 32, 256, 64, 1, 0, integrator);
+    CHECK(img.stats.invalid_samples == 0);
+    test::check_mean(img, 10, 10, 22, 22, 0.5, 0.02);
+    test::check_mean(img, 0, 0, 32, 3, 1.0, 0.02);  // top rows: sky
+  }
 }
 
-TEST_CASE("bdpt: inside a closed emitting sphere the radiance is Le / (1 - albedo)") {
+TEST_CASE("bdpt, vcm: inside a closed emitting sphere the radiance is Le / (1 - albedo)") {
   const Scene scene = test::emitting_sphere_scene();
-  const auto img = test::render_rgb(scene, test::look_at({0, 0, 0.3f}, {0, 0, -1}, 60.f), 32, 32, 64, 1000, 1, 0,
-                                    IntegratorKind::bdpt);
-  CHECK(img.stats.invalid_samples == 0);
-  test::check_mean(img, 0, 0, 32, 32, 1.0, 0.02);
+  for (const IntegratorKind integrator : kBidirectional) {
+    INFO((integrator == IntegratorKind::bdpt ? "bdpt" : "vcm"));
+    const auto img =
+        test::render_rgb(scene, test::look_at({0, 0, 0.3f}, {0, 0, -1}, 60.f), 32, 32, 64, 1000, 1, 0, integrator);
+    CHECK(img.stats.invalid_samples == 0);
+    test::check_mean(img, 0, 0, 32, 32, 1.0, 0.02);
+  }
 }
 
 TEST_CASE("light tracing alone reproduces a point light's irradiance on a plane, rho I cos / (pi d^2)") {
@@ -67,16 +96,7 @@ TEST_CASE("light tracing alone reproduces a point light's irradiance on a plane,
   scene.materials.push_back(test::diffuse({kAlbedo, kAlbedo, kAlbedo}));
   test::add_mesh(scene, test::make_quad({-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, 0));
   scene.point_lights.push_back({"lamp", light, RgbIlluminantSpectrum(Rgb{kIntensity, kIntensity, kIntensity})});
-  CameraDesc camera;
-  camera.projection = CameraDesc::Projection::orthographic;
-  camera.xmag = camera.ymag = 1;
-  const Vec3f eye(0, 4, 0), right(1, 0, 0), up(0, 0, -1), back(0, 1, 0);
-  for (int r = 0; r < 3; ++r) {
-    camera.to_world.m[r][0] = right[r];
-    camera.to_world.m[r][1] = up[r];
-    camera.to_world.m[r][2] = back[r];
-    camera.to_world.m[r][3] = eye[r];
-  }
+  const CameraDesc camera = looking_down(4, 1);
   constexpr int n = 16;
   for (const IntegratorKind integrator : {IntegratorKind::light, IntegratorKind::bdpt}) {
     INFO((integrator == IntegratorKind::light ? "light tracing" : "bdpt"));
@@ -157,4 +177,52 @@ TEST_CASE("bdpt and vcm render the stress scenes and the dispersive prism with n
     }
   }
   log::set_level(log::Level::info);
+}
+
+TEST_CASE("a caustic of known power: sunlight through a glass slab lights the floor with E (1 - R) / (1 + R)") {
+  // Straight down through a slab of index 1.5 (R = 0.04 at each face, all internal reflections
+  // summed) onto a floor of albedo 0.5, seen from under the slab. Light → specular → specular →
+  // diffuse → camera: the path tracer never finds it (the sun is a delta light); light paths do.
+  constexpr float kAlbedo = 0.5f, kE = 3.f;
+  Scene scene;
+  scene.materials.push_back(test::diffuse({kAlbedo, kAlbedo, kAlbedo}));
+  scene.materials.push_back(glass(ConstantIor{1.5f}));
+  // The floor and the slab 3 × 3, the view the central 2 × 2: all its light came through the slab.
+  test::add_mesh(scene, test::make_quad({-1.5f, 0, -1.5f}, {0, 0, 3}, {3, 0, 0}, 0));     // floor, front +Y
+  test::add_mesh(scene, test::make_quad({-1.5f, 1.2f, -1.5f}, {0, 0, 3}, {3, 0, 0}, 1));  // slab top, front +Y
+  test::add_mesh(scene, test::make_quad({-1.5f, 1, -1.5f}, {3, 0, 0}, {0, 0, 3}, 1));     // slab bottom, front −Y
+  scene.directional_lights.push_back({"sun", {0, -1, 0}, RgbIlluminantSpectrum(Rgb{kE, kE, kE})});
+  const double R = 0.04, expected = kAlbedo / kPi * kE * (1 - R) / (1 + R);
+  for (const IntegratorKind integrator : kBidirectional) {
+    INFO((integrator == IntegratorKind::bdpt ? "bdpt" : "vcm"));
+    const auto img = test::render_rgb(scene, looking_down(0.5f, 1), 16, 16, 1024, 16, 1, 0, integrator);
+    CHECK(img.stats.invalid_samples == 0);
+    test::check_mean(img, 0, 0, 16, 16, expected, 0.02 * expected);
+  }
+}
+
+TEST_CASE("bdpt, vcm: a dispersive glass sphere under a uniform environment renders 1") {
+  Scene scene;
+  scene.materials.push_back(glass(AbbeIor{1.7f, 20.f}));
+  test::add_mesh(scene, test::make_icosphere({0, 0, 0}, 1.f, 3, 0));
+  scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
+  for (const IntegratorKind integrator : kBidirectional) {
+    INFO((integrator == IntegratorKind::bdpt ? "bdpt" : "vcm"));
+    const auto img =
+        test::render_rgb(scene, test::look_at({0, 0, 5.f}, {0, 0, 0}, 12.f), 16, 16, 2048, 1000, 1, 0, integrator);
+    CHECK(img.stats.invalid_samples == 0);
+    test::check_mean(img, 0, 0, 16, 16, 1.0, 0.02);
+  }
+}
+
+TEST_CASE("bdpt, vcm and the path tracer agree on the dispersive prism in mean and colour") {
+  Scene scene = load_gltf(std::filesystem::path(PRISM_SOURCE_DIR) / "data/scenes/dispersion.gltf");
+  const CameraDesc& camera = scene.cameras.at(0);
+  const auto path = test::render_rgb(scene, camera, 24, 24, 4096, 16, 1);
+  for (const IntegratorKind integrator : kBidirectional) {
+    INFO((integrator == IntegratorKind::bdpt ? "bdpt" : "vcm"));
+    const auto img = test::render_rgb(scene, camera, 24, 24, 1024, 16, 2, 0, integrator);
+    CHECK(img.stats.invalid_samples == 0);
+    check_agree(img, path, 0.03);
+  }
 }
