@@ -219,6 +219,7 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
       {"prism.maxDepth", options.path.max_depth},
       {"prism.colorSpace", colorspace},
       {"prism.sceneFeatures", prepared.world->features().to_string()},
+      {"prism.samples", std::to_string(result.stats().samples)},  // with the error estimate's replicates
       {"prism.invalidSamples", std::to_string(result.stats().invalid_samples)},
       {"prism.estimatedRelRmse", ErrorEstimate(film).rel_rmse()},
       {"prism.interrupted", int(result.interrupted)},

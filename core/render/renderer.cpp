@@ -97,19 +97,20 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
     for (int x = x0; x < x1; ++x) {
       const size_t p = size_t(y) * camera.width() + x;
       if (!active.empty() && !active[p]) continue;
-      const int replicates = replicated_pixel({x, y}, options.seed) ? 2 : 1;  // error_estimate.h
-      for (int s = options.sample_begin + int(film.samples(p)); s < end; ++s)
-        for (int r = 0; r < replicates; ++r) {
-          const CameraSample<N> c =
-              camera_sample<N>(world, camera, options, radiance, sampler, {x, y}, s, r, stats.rays);
-          FilmSample fs{c.xyz};
-          if (first_hits) first_hit<N>(world, c.ray, c.lambda, fs);
-          ++stats.samples;
-          if (!film.add(p, fs, r)) ++stats.invalid;
-          if (bins)
-            for (int i = 0; i < N; ++i)
-              if (c.lambda.pdf()[i] > 0) film.add_spectral(p, c.lambda[i], double(c.L[i]) / (c.lambda.pdf()[i] * N));
-        }
+      // Each sample index once, or in the pixels the error estimate replicates twice (error_estimate.h).
+      const int replicates = replicated_pixel({x, y}, options.seed) ? 2 : 1;
+      for (int64_t k = int64_t(options.sample_begin + film.samples(p)) * replicates; k < int64_t(end) * replicates;
+           ++k) {
+        const int s = int(k / replicates), r = int(k % replicates);
+        const CameraSample<N> c = camera_sample<N>(world, camera, options, radiance, sampler, {x, y}, s, r, stats.rays);
+        FilmSample fs{c.xyz};
+        if (first_hits) first_hit<N>(world, c.ray, c.lambda, fs);
+        ++stats.samples;
+        if (!film.add(p, fs, r)) ++stats.invalid;
+        if (bins)
+          for (int i = 0; i < N; ++i)
+            if (c.lambda.pdf()[i] > 0) film.add_spectral(p, c.lambda[i], double(c.L[i]) / (c.lambda.pdf()[i] * N));
+      }
     }
 }
 
