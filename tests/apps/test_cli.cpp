@@ -97,7 +97,7 @@ TEST_CASE("prism converge writes the error table, the plot and the summary") {
   CHECK(line == "configuration,spp,seconds,rmse,relative_mse,mean_error");
   int rows = 0;
   while (std::getline(csv, line)) ++rows;
-  CHECK(rows == 6 * 3);  // six configurations at 1, 2 and 4 spp
+  CHECK(rows == 8 * 3);  // eight configurations at 1, 2 and 4 spp
   std::ifstream md(dir / "summary.md");
   std::stringstream summary;
   summary << md.rdbuf();
@@ -106,4 +106,32 @@ TEST_CASE("prism converge writes the error table, the plot and the summary") {
   CHECK(test::run_prism("converge \"" PRISM_SOURCE_DIR "/data/scenes/cornell.gltf\" --width 8 --height 8 --max-spp 1 "
                         "--reference \"" +
                         (dir / "ref.exr").string() + "\" --out \"" + dir.string() + "\"") == 1);
+}
+
+TEST_CASE("prism converge --seconds compares the chosen integrators at equal time and names the one to use") {
+  const auto dir = test::temp_dir("converge_equal_time");
+  std::string err;
+  const int code =
+      test::run_prism("converge \"" PRISM_SOURCE_DIR
+                      "/data/scenes/cornell.gltf\" --width 16 --height 16 --reference-spp 16 "
+                      "--reference-integrator bdpt --integrators path,bdpt,vcm --seconds 0.2 --reference \"" +
+                          (dir / "ref.exr").string() + "\" --out \"" + dir.string() + "\"",
+                      &err);
+  INFO(err);
+  REQUIRE(code == 0);
+  std::ifstream csv(dir / "equal_time.csv");
+  std::string line;
+  std::getline(csv, line);
+  CHECK(line == "configuration,seconds,spp,relative_rmse,relative_rmse_at_budget,mean_error");
+  int rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  CHECK(rows == 3);
+  std::ifstream md(dir / "summary.md");
+  std::stringstream summary;
+  summary << md.rdbuf();
+  CHECK(summary.str().find("for this scene") != std::string::npos);
+  // An unknown integrator is a usage error.
+  CHECK(test::run_prism("converge \"" PRISM_SOURCE_DIR "/data/scenes/cornell.gltf\" --integrators path,mlt "
+                        "--seconds 1 --reference \"" +
+                        (dir / "ref.exr").string() + "\" --out \"" + dir.string() + "\"") == 2);
 }

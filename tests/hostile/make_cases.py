@@ -394,7 +394,7 @@ def build_cases():
         ("wavelengths_3", ["--wavelengths", "3"], "wavelengths"),
         ("threads_negative", ["--threads", "-2"], "threads"),
         ("max_depth_negative", ["--max-depth", "-1"], "max-depth"),
-        ("integrator_unknown", ["--integrator", "bdpt"], "integrator"),
+        ("integrator_unknown", ["--integrator", "mlt"], "integrator"),
         ("sampler_unknown", ["--sampler", "halton"], "sampler"),
         ("unknown_option", ["--frobnicate"], "frobnicate"),
         ("camera_negative", ["--camera", "-1"], "camera"),
