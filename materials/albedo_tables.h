@@ -42,10 +42,12 @@ struct Point {
   int a, m;
   float ta, tm;
 };
-inline Point point(float mu, float alpha) {
-  const Lerp a = locate(std::cbrt(alpha), 1, kAlpha), m = locate(std::sqrt(std::max(mu, 0.f)), 1, kMu);
+inline Lerp alpha_node(float alpha) { return locate(std::cbrt(alpha), 1, kAlpha); }
+inline Point point(float mu, const Lerp& a) {
+  const Lerp m = locate(std::sqrt(std::max(mu, 0.f)), 1, kMu);
   return {a.i, m.i, a.t, m.t};
 }
+inline Point point(float mu, float alpha) { return point(mu, alpha_node(alpha)); }
 
 // One table of E over (α, μ) and its cosine-weighted averages E_avg = 2∫ E(μ) μ dμ, per α.
 struct Grid {
@@ -60,10 +62,7 @@ struct Grid {
     }
     return r;
   }
-  float average(float alpha) const {  // linear in ∛α
-    const Lerp a = locate(std::cbrt(alpha), 1, kAlpha);
-    return (1 - a.t) * avg[a.i] + a.t * avg[a.i + 1];
-  }
+  float average(const Lerp& a) const { return (1 - a.t) * avg[a.i] + a.t * avg[a.i + 1]; }  // a: where ∛α falls
 };
 
 // An η slice: reflection, reflection compensated (divided by reflection + transmission), reflection + transmission.

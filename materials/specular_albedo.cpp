@@ -8,36 +8,53 @@ namespace prism {
 
 using namespace albedo_tables;
 
+namespace {
+
+bool smooth(const SpecularAlbedo::Roughness& r) { return TrowbridgeReitz::effectively_smooth(r.alpha); }
+
+Point point(float mu, const SpecularAlbedo::Roughness& r) { return albedo_tables::point(mu, Lerp{r.a, r.ta}); }
+
+const Grid& reflection(int h, bool compensated) { return compensated ? specular[h].r_compensated : specular[h].r; }
+
+}  // namespace
+
+SpecularAlbedo::Roughness SpecularAlbedo::roughness(float alpha) {
+  const Lerp a = alpha_node(alpha);
+  return {alpha, a.i, a.t};
+}
+
 const SpecularAlbedo& SpecularAlbedo::table() {
   static const SpecularAlbedo t;
   return t;
 }
 
-float SpecularAlbedo::E(float mu, float alpha, float eta, bool compensated) const {
-  if (TrowbridgeReitz::effectively_smooth(alpha)) return fresnel_dielectric(mu, eta);
+float SpecularAlbedo::E(float mu, const Roughness& r, float eta, bool compensated) const {
+  if (smooth(r)) return fresnel_dielectric(mu, eta);
   const Lerp h = locate_eta(eta);
-  const Point p = point(mu, alpha);
-  const auto grid = [&](int i) -> const Grid& { return compensated ? specular[i].r_compensated : specular[i].r; };
-  return (1 - h.t) * grid(h.i).at(p) + h.t * grid(h.i + 1).at(p);
+  const Point p = point(mu, r);
+  return (1 - h.t) * reflection(h.i, compensated).at(p) + h.t * reflection(h.i + 1, compensated).at(p);
 }
 
-float SpecularAlbedo::average(float alpha, float eta, bool compensated) const {
+float SpecularAlbedo::average(const Roughness& r, float eta, bool compensated) const {
   const Lerp h = locate_eta(eta);
-  const auto grid = [&](int i) -> const Grid& { return compensated ? specular[i].r_compensated : specular[i].r; };
-  return (1 - h.t) * grid(h.i).average(alpha) + h.t * grid(h.i + 1).average(alpha);
+  const Lerp a{r.a, r.ta};
+  return (1 - h.t) * reflection(h.i, compensated).average(a) + h.t * reflection(h.i + 1, compensated).average(a);
 }
 
-float SpecularAlbedo::interface(float mu, float alpha, float eta) const {
-  if (TrowbridgeReitz::effectively_smooth(alpha)) return 1.f;
+float SpecularAlbedo::interface(float mu, const Roughness& r, float eta) const {
+  if (smooth(r)) return 1.f;
   const Lerp h = locate_eta(eta);
-  const Point p = point(mu, alpha);
+  const Point p = point(mu, r);
   return (1 - h.t) * specular[h.i].rt.at(p) + h.t * specular[h.i + 1].rt.at(p);
 }
 
-float SpecularAlbedo::white(float mu, float alpha) const {
-  return TrowbridgeReitz::effectively_smooth(alpha) ? 1.f : specular_white.at(point(mu, alpha));
+float SpecularAlbedo::white(float mu, const Roughness& r) const {
+  return smooth(r) ? 1.f : specular_white.at(point(mu, r));
 }
 
-float SpecularAlbedo::white_average(float alpha) const { return specular_white.average(alpha); }
+float SpecularAlbedo::white_average(float alpha) const {
+  const Roughness r = roughness(alpha);
+  return specular_white.average({r.a, r.ta});
+}
 
 }  // namespace prism

@@ -20,11 +20,26 @@ namespace prism {
 
 class SpecularAlbedo {
  public:
+  // Where a roughness α falls on the tables' α axis (a cube root): found once by a lobe that looks
+  // up E at several μ per shading point.
+  struct Roughness {
+    float alpha;
+    int a;
+    float ta;
+  };
+  static Roughness roughness(float alpha);
+
   static const SpecularAlbedo& table();
-  float E(float mu, float alpha, float eta, bool compensated) const;
-  float average(float alpha, float eta, bool compensated) const;
-  float interface(float mu, float alpha, float eta) const;
-  float white(float mu, float alpha) const;
+  float E(float mu, const Roughness& r, float eta, bool compensated) const;
+  float average(const Roughness& r, float eta, bool compensated) const;
+  float interface(float mu, const Roughness& r, float eta) const;
+  float white(float mu, const Roughness& r) const;
+  float E(float mu, float alpha, float eta, bool compensated) const {
+    return E(mu, roughness(alpha), eta, compensated);
+  }
+  float average(float alpha, float eta, bool compensated) const { return average(roughness(alpha), eta, compensated); }
+  float interface(float mu, float alpha, float eta) const { return interface(mu, roughness(alpha), eta); }
+  float white(float mu, float alpha) const { return white(mu, roughness(alpha)); }
   float white_average(float alpha) const;
 };
 
