@@ -152,6 +152,13 @@ struct Material {
   // Opacity at a point: PbrMaterial alpha × texture × vertex colour; 1 when opaque.
   float opacity(const SurfacePoint& at) const;
 
+  // Whether light can pass through the surface anywhere (transmission or diffuse transmission);
+  // otherwise it only reflects, into the side the light comes from.
+  bool transmits() const {
+    const auto* p = std::get_if<PbrMaterial>(&kind);
+    return p && (p->transmission > 0 || (p->diffuse_transmission && p->diffuse_transmission->factor > 0));
+  }
+
   // The surface's dielectric interface, if light can pass it (for nested media and dispersion).
   const Dielectric* dielectric() const {
     const auto* p = std::get_if<PbrMaterial>(&kind);

@@ -24,7 +24,7 @@ inline bool fixed_in_range(double v) { return std::fabs(v) < kFixedLimit; }  // 
 // v · 2^bits is exact (a power of two) like ldexp(v, bits), which costs a call per sample; most values
 // fit in 64 bits, whose conversion needs no 128-bit library routine.
 inline Fixed to_fixed(double v, int bits = kFixedBits) {
-  const double r = std::nearbyint(v * std::ldexp(1.0, bits));
+  const double r = std::nearbyint(v * double(uint64_t(1) << bits));
   return std::fabs(r) < 0x1p63 ? Fixed(int64_t(r)) : Fixed(r);
 }
 
