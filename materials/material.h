@@ -222,7 +222,7 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
   const bool film = p.iridescence > 0 && p.iridescence_thickness > 0;
   if (!layered && !film && p.specular_color == Rgb{1, 1, 1} && p.diffuse_transmission <= 0) {
     // The plain metallic-roughness model, compiled without the extensions' parts.
-    const ConductorBsdf<N> metal(distribution, n, k, ms);
+    const ConductorBsdf<N> metal(distribution, n, k, ms && p.metallic > 0);  // weight 0: never evaluated
     if (p.metallic >= 1) return metal;
     if constexpr (Dispersion)
       if (disperses(m, front)) lambda.terminate_secondary();
