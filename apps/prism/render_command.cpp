@@ -170,9 +170,10 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
             options.wavelengths);
   auto last_checkpoint = std::chrono::steady_clock::now();
   RenderControl control{&interrupt::requested(), [&](const PassReport& pass, const RenderState& state) {
-                          log::verbose("pass {}: {} spp, {} pixels sampled, {:.1f} s; {}", pass.pass + 1,
-                                       pass.samples_end, pass.active_pixels, state.stats.seconds,
-                                       error_summary(state.film));
+                          if (log::level() >= log::Level::verbose)  // the error summary sorts the pixels
+                            log::verbose("pass {}: {} spp, {} pixels sampled, {:.1f} s; {}", pass.pass + 1,
+                                         pass.samples_end, pass.active_pixels, state.stats.seconds,
+                                         error_summary(state.film));
                           if (args.checkpoint > 0 && seconds_since(last_checkpoint) >= args.checkpoint) {
                             save_checkpoint(checkpoint, state, print);
                             last_checkpoint = std::chrono::steady_clock::now();
