@@ -43,7 +43,7 @@ class ConductorBsdf {
   SampledSpectrum<N> reflectance(float cos_theta) const {
     if constexpr (Extensions)
       if (film_)
-        return film_->reflectance(std::abs(cos_theta), [&](int i) { return std::complex<double>(n_[i], k_[i]); });
+        return film_->reflectance(std::abs(cos_theta), [&](int i) { return std::complex<float>(n_[i], k_[i]); });
     SampledSpectrum<N> r;
     for (int i = 0; i < N; ++i) r[i] = fresnel_conductor(cos_theta, n_[i], k_[i]);
     return r;
