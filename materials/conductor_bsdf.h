@@ -31,6 +31,7 @@ class ConductorBsdf {
       : distribution_(distribution),
         smooth_(distribution.effectively_smooth()),
         compensate_(compensate && !smooth_),
+        roughness_(compensate_ ? SpecularAlbedo::roughness(distribution.alpha()) : SpecularAlbedo::Roughness{}),
         n_(n),
         k_(k),
         film_(film) {
@@ -94,7 +95,7 @@ class ConductorBsdf {
  private:
   // 1 + F0 (1 − E(μ)) / E(μ), F0 = ((n − 1)² + k²) / ((n + 1)² + k²) the normal reflectance.
   SampledSpectrum<N> multiple_scattering(float mu) const {
-    const float e = SpecularAlbedo::table().white(mu, distribution_.alpha());
+    const float e = SpecularAlbedo::table().white(mu, roughness_);
     SampledSpectrum<N> r;
     for (int i = 0; i < N; ++i) {
       const float k2 = k_[i] * k_[i];
@@ -111,6 +112,7 @@ class ConductorBsdf {
 
   TrowbridgeReitz distribution_;
   bool smooth_, compensate_;
+  SpecularAlbedo::Roughness roughness_;  // where α falls on the albedo tables, when compensating
   SampledSpectrum<N> n_, k_;
   [[no_unique_address]] OptionalPart<Extensions, FilmLanes<N>> film_;
   [[no_unique_address]] OptionalPart<Extensions, SampledSpectrum<N>>

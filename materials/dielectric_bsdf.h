@@ -59,6 +59,7 @@ class DielectricBsdf {
       : distribution_(distribution),
         smooth_(distribution.effectively_smooth() || eta == 1),
         compensate_(compensate && !smooth_),
+        roughness_(compensate_ ? SpecularAlbedo::roughness(distribution.alpha()) : SpecularAlbedo::Roughness{}),
         eta_(eta),
         tint_(tint),
         thin_(thin),
@@ -204,8 +205,8 @@ class DielectricBsdf {
   // E(μ_o) of the white lossless lobes on wo's side (see the header).
   float single_scattering_albedo(float mu, float eta) const {
     const SpecularAlbedo& t = SpecularAlbedo::table();
-    if (thin_) return t.white(std::abs(mu), distribution_.alpha());
-    return t.interface(std::abs(mu), distribution_.alpha(), mu > 0 ? eta : 1 / eta);
+    if (thin_) return t.white(std::abs(mu), roughness_);
+    return t.interface(std::abs(mu), roughness_, mu > 0 ? eta : 1 / eta);
   }
 
   std::optional<BsdfSample<N>> sample_smooth(const Vec3f& wo, float uc) const {
@@ -225,6 +226,7 @@ class DielectricBsdf {
 
   TrowbridgeReitz distribution_;
   bool smooth_, compensate_;
+  SpecularAlbedo::Roughness roughness_;  // where α falls on the albedo tables, when compensating
   float eta_;
   SampledSpectrum<N> tint_;
   bool thin_;

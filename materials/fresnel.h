@@ -7,7 +7,6 @@
 // side; a negative cos θ_i means the light arrives from the other side and η is inverted.
 
 #include <cmath>
-#include <complex>
 #include <optional>
 
 #include "base/vec.h"
@@ -74,18 +73,19 @@ inline float fresnel_dielectric(float cos_theta_i, float eta) {
 // Fresnel equations with a complex relative index η = n + ik (Born & Wolf §14.2): the same
 // amplitudes as above with complex cos θ_t = sqrt(1 − sin²θ_i / η²). Exact, not the usual
 // approximation in n, k and cos θ. cos θ_i is taken on the incident side (|cos θ_i|).
+// In real arithmetic (pbrt-v3's FrConductor; Lagarde 2013, "Memo on Fresnel equations"): with
+// η² cos²θ_t = (a + ib)², a² + b² = |n² − k² − sin²θ + 2ink| and a² = (a² + b² + n² − k² − sin²θ)/2,
+//   R⊥ = (a² + b² − 2a cos θ + cos²θ) / (a² + b² + 2a cos θ + cos²θ),
+//   R∥ = R⊥ (cos²θ (a² + b²) − 2a cos θ sin²θ + sin⁴θ) / (cos²θ (a² + b²) + 2a cos θ sin²θ + sin⁴θ).
+// A vanishing denominator (grazing onto an index-matched k = 0 surface) is the grazing limit, R = 1.
 inline FresnelReflectance fresnel_conductor_polarized(float cos_theta_i, float n, float k) {
-  using C = std::complex<double>;
-  const double cos_i = std::min(1.0, std::abs(double(cos_theta_i)));
   if (n == 0 && k == 0) return {1, 1, 1};  // η = 0: the ideal-conductor limit
-  const C eta(n, k);
-  const C cos_t = std::sqrt(1.0 - (1 - cos_i * cos_i) / (eta * eta));
-  // |r|² of (a − b) / (a + b); a vanishing denominator (grazing onto an index-matched k = 0
-  // surface) is the grazing limit, R = 1.
-  const auto reflectance = [](C a, C b) {
-    return std::norm(a + b) == 0 ? 1.0 : std::min(1.0, std::norm((a - b) / (a + b)));
-  };
-  const double Rs = reflectance(cos_i, eta * cos_t), Rp = reflectance(eta * cos_i, cos_t);
+  const double c = std::min(1.0, std::abs(double(cos_theta_i))), c2 = c * c, s2 = 1 - c2;
+  const double n2 = double(n) * n, k2 = double(k) * k, t0 = n2 - k2 - s2;
+  const double a2b2 = std::sqrt(t0 * t0 + 4 * n2 * k2), a = std::sqrt(std::max(0.0, (a2b2 + t0) / 2));
+  const double t1 = a2b2 + c2, t2 = 2 * c * a, t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
+  const double Rs = t1 + t2 == 0 ? 1.0 : std::min(1.0, (t1 - t2) / (t1 + t2));
+  const double Rp = t3 + t4 == 0 ? 1.0 : std::min(1.0, Rs * (t3 - t4) / (t3 + t4));
   return {float((Rs + Rp) / 2), float(Rs), float(Rp)};
 }
 

@@ -152,6 +152,13 @@ struct Material {
   // Opacity at a point: PbrMaterial alpha × texture × vertex colour; 1 when opaque.
   float opacity(const SurfacePoint& at) const;
 
+  // Whether light can pass through the surface anywhere (transmission or diffuse transmission);
+  // otherwise it only reflects, into the side the light comes from.
+  bool transmits() const {
+    const auto* p = std::get_if<PbrMaterial>(&kind);
+    return p && (p->transmission > 0 || (p->diffuse_transmission && p->diffuse_transmission->factor > 0));
+  }
+
   // The surface's dielectric interface, if light can pass it (for nested media and dispersion).
   const Dielectric* dielectric() const {
     const auto* p = std::get_if<PbrMaterial>(&kind);
@@ -215,7 +222,7 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
   const bool film = p.iridescence > 0 && p.iridescence_thickness > 0;
   if (!layered && !film && p.specular_color == Rgb{1, 1, 1} && p.diffuse_transmission <= 0) {
     // The plain metallic-roughness model, compiled without the extensions' parts.
-    const ConductorBsdf<N> metal(distribution, n, k, ms);
+    const ConductorBsdf<N> metal(distribution, n, k, ms && p.metallic > 0);  // weight 0: never evaluated
     if (p.metallic >= 1) return metal;
     if constexpr (Dispersion)
       if (disperses(m, front)) lambda.terminate_secondary();

@@ -56,11 +56,11 @@ class PbrBsdf {
         metal_(metal),
         dielectric_(dielectric),
         albedo_(albedo),
-        alpha_(alpha),
         eta_(eta),
         specular_(specular),
         compensated_(compensated),
-        e_avg_(specular * SpecularAlbedo::table().average(alpha, eta, compensated)) {
+        roughness_(SpecularAlbedo::roughness(alpha)),
+        e_avg_(specular * SpecularAlbedo::table().average(roughness_, eta, compensated)) {
     if constexpr (Extensions) {
       if (!extras) return;
       extras_ = Parts{extras->diffuse_transmission, extras->transmitted_albedo, {}};
@@ -69,7 +69,7 @@ class PbrBsdf {
       const float white_average = extras->lane_excess ? SpecularAlbedo::table().white_average(alpha) : 0.f;
       for (int i = 0; i < N; ++i)
         extras_->lanes->e_avg[i] =
-            specular * (SpecularAlbedo::table().average(alpha, (*extras->lane_etas)[i], compensated) +
+            specular * (SpecularAlbedo::table().average(roughness_, (*extras->lane_etas)[i], compensated) +
                         extras_->lanes->excess[i] * white_average);
     }
   }
@@ -88,7 +88,9 @@ class PbrBsdf {
 
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
     if (flips(wo)) return f(-wo, -wi);
-    SampledSpectrum<N> r = metal_.f(wo, wi) * metallic_ + dielectric_.f(wo, wi) * (1 - metallic_);
+    SampledSpectrum<N> r(0.f);  // lobes of weight 0 are not evaluated (most materials are not half metal)
+    if (metallic_ > 0) r += metal_.f(wo, wi) * metallic_;
+    if (metallic_ < 1) r += dielectric_.f(wo, wi) * (1 - metallic_);
     if (diffuse_weight() <= 0) return r;
     if (same_hemisphere(wo, wi)) {
       r += albedo_ * (coupling(wo, wi) * (diffuse_weight() * (1 - diffuse_transmission()) * kInvPi));
@@ -145,7 +147,9 @@ class PbrBsdf {
     return 0.f;
   }
 
-  float E(float mu) const { return specular_ * SpecularAlbedo::table().E(std::abs(mu), alpha_, eta_, compensated_); }
+  float E(float mu) const {
+    return specular_ * SpecularAlbedo::table().E(std::abs(mu), roughness_, eta_, compensated_);
+  }
   // The coupling factor (1 − E(μ_o))(1 − E(μ_i)) / (1 − E_avg): one value, or one per lane.
   float scalar_coupling(const Vec3f& wo, const Vec3f& wi) const {
     return e_avg_ < 1 ? (1 - E(wo.z)) * (1 - E(wi.z)) / (1 - e_avg_) : 0.f;
@@ -157,12 +161,12 @@ class PbrBsdf {
       if (!extras_ || !extras_->lanes) return SampledSpectrum<N>(scalar_coupling(wo, wi));
       const LaneCoupling& lanes = *extras_->lanes;
       const bool film = lanes.excess.max() > 0;
-      const float white_o = film ? SpecularAlbedo::table().white(std::abs(wo.z), alpha_) : 0.f,
-                  white_i = film ? SpecularAlbedo::table().white(std::abs(wi.z), alpha_) : 0.f;
+      const float white_o = film ? SpecularAlbedo::table().white(std::abs(wo.z), roughness_) : 0.f,
+                  white_i = film ? SpecularAlbedo::table().white(std::abs(wi.z), roughness_) : 0.f;
       SampledSpectrum<N> c;
       for (int i = 0; i < N; ++i) {
         const auto lane_E = [&](float mu, float white) {
-          return specular_ * (SpecularAlbedo::table().E(std::abs(mu), alpha_, lanes.eta[i], compensated_) +
+          return specular_ * (SpecularAlbedo::table().E(std::abs(mu), roughness_, lanes.eta[i], compensated_) +
                               lanes.excess[i] * white);
         };
         c[i] = lanes.e_avg[i] < 1 ? std::max(0.f, 1 - lane_E(wo.z, white_o)) *
@@ -175,7 +179,9 @@ class PbrBsdf {
 
   // Σ (probability of lobe) × (its pdf), for the probabilities of wo (not flipped).
   float mixture_pdf(const Vec3f& wo, const Vec3f& wi, const std::array<float, 4>& p) const {
-    float r = p[0] * metal_.pdf(wo, wi) + p[1] * dielectric_.pdf(wo, wi);
+    float r = 0;
+    if (p[0] > 0) r += p[0] * metal_.pdf(wo, wi);
+    if (p[1] > 0) r += p[1] * dielectric_.pdf(wo, wi);
     if (same_hemisphere(wo, wi))
       r += p[2] * cosine_hemisphere_pdf(abs_cos_theta(wi));
     else if constexpr (Extensions)
@@ -218,8 +224,9 @@ class PbrBsdf {
   ConductorBsdf<N, Extensions> metal_;
   DielectricBsdf<N, Extensions> dielectric_;
   SampledSpectrum<N> albedo_;
-  float alpha_, eta_, specular_;
+  float eta_, specular_;
   bool compensated_;
+  SpecularAlbedo::Roughness roughness_;  // the specular lobe's α, on the albedo tables
   float e_avg_;
   [[no_unique_address]] OptionalPart<Extensions, Parts> extras_;
 };

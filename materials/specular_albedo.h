@@ -12,53 +12,35 @@
 //                      Based Shading at Imageworks"): f_diffuse = ρ/π · (1 − E(μ_o))(1 − E(μ_i))/(1 − E_avg).
 // white() and interface() are the single-scattering albedos that the multiple-scattering
 // compensation divides by (Turquin 2019; see conductor_bsdf.h, dielectric_bsdf.h).
-// Tabulated over √μ, ∛α ∈ [0, 1] and x = (η − 1)/(η + 1) ∈ [−1/2, 1/2], axes on
-// which E varies smoothly enough for linear interpolation; each table (the white one, or one η
-// slice) is computed by stratified sampling the first time a material needs it (tens of
-// milliseconds), deterministically, so a scene pays only for the indices it uses.
-
-#include <array>
-#include <mutex>
-#include <vector>
+// Tabulated over √μ, ∛α ∈ [0, 1] and x = (η − 1)/(η + 1) ∈ [−1/2, 1/2], axes on which E varies
+// smoothly enough for linear interpolation; the tables are computed at build time
+// (materials/albedo_tables.h), so a lookup only interpolates.
 
 namespace prism {
 
 class SpecularAlbedo {
  public:
-  static const SpecularAlbedo& table();  // computed once, thread-safe
-  float E(float mu, float alpha, float eta, bool compensated) const;
-  float average(float alpha, float eta, bool compensated) const;
-  float interface(float mu, float alpha, float eta) const;
-  float white(float mu, float alpha) const;
+  // Where a roughness α falls on the tables' α axis (a cube root): found once by a lobe that looks
+  // up E at several μ per shading point.
+  struct Roughness {
+    float alpha;
+    int a;
+    float ta;
+  };
+  static Roughness roughness(float alpha);
+
+  static const SpecularAlbedo& table();
+  float E(float mu, const Roughness& r, float eta, bool compensated) const;
+  float average(const Roughness& r, float eta, bool compensated) const;
+  float interface(float mu, const Roughness& r, float eta) const;
+  float white(float mu, const Roughness& r) const;
+  float E(float mu, float alpha, float eta, bool compensated) const {
+    return E(mu, roughness(alpha), eta, compensated);
+  }
+  float average(float alpha, float eta, bool compensated) const { return average(roughness(alpha), eta, compensated); }
+  float interface(float mu, float alpha, float eta) const { return interface(mu, roughness(alpha), eta); }
+  float white(float mu, float alpha) const { return white(mu, roughness(alpha)); }
   float white_average(float alpha) const;
-
-  static constexpr int kMu = 32, kAlpha = 32, kEta = 31;
-
- private:
-  SpecularAlbedo();
-  // Where (μ, α) falls on the grids' axes (∛α, √μ): cell and weights, shared by the grids read.
-  struct Point {
-    int a, m;
-    float ta, tm;
-  };
-  static Point point(float mu, float alpha);
-  // One table of E over (α, μ) and its averages over μ, per α.
-  struct Grid {
-    std::vector<float> e = std::vector<float>(size_t(kAlpha) * kMu), avg = std::vector<float>(kAlpha);
-    float at(const Point& p) const;    // bilinear
-    float average(float alpha) const;  // linear in ∛α
-  };
-  // An η slice: reflection, reflection compensated, reflection + transmission.
-  struct Slice {
-    Grid r, r_compensated, rt;
-  };
-  const Slice& slice(int h) const;  // computes it on first use
-  const Grid& white_grid() const;
-
-  mutable std::array<Slice, kEta> slices_;
-  mutable std::array<std::once_flag, kEta> slice_ready_;
-  mutable Grid white_;
-  mutable std::once_flag white_ready_;
 };
 
 }  // namespace prism

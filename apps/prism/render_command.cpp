@@ -21,6 +21,7 @@
 #include "base/interrupt.h"
 #include "base/log.h"
 #include "render/checkpoint.h"
+#include "render/error_estimate.h"
 #include "render/image_output.h"
 #include "render/pass_schedule.h"
 
@@ -101,8 +102,9 @@ std::string fingerprint(const RenderArgs& args, const Camera& camera, const Rend
 
 // The image's error as the log and the header state it.
 std::string error_summary(const Film& film) {
+  const ErrorEstimate error(film);
   return fmt::format("estimated relative RMSE {:.4g} (per pixel: median {:.3g}, 90th percentile {:.3g})",
-                     film.estimated_rel_rmse(), film.pixel_rel_rmse_quantile(0.5), film.pixel_rel_rmse_quantile(0.9));
+                     error.rel_rmse(), error.pixel_rel_rmse_quantile(0.5), error.pixel_rel_rmse_quantile(0.9));
 }
 
 struct SampleCounts {
@@ -168,9 +170,10 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
             options.wavelengths);
   auto last_checkpoint = std::chrono::steady_clock::now();
   RenderControl control{&interrupt::requested(), [&](const PassReport& pass, const RenderState& state) {
-                          log::verbose("pass {}: {} spp, {} pixels sampled, {:.1f} s; {}", pass.pass + 1,
-                                       pass.samples_end, pass.active_pixels, state.stats.seconds,
-                                       error_summary(state.film));
+                          if (log::level() >= log::Level::verbose)  // the error summary sorts the pixels
+                            log::verbose("pass {}: {} spp, {} pixels sampled, {:.1f} s; {}", pass.pass + 1,
+                                         pass.samples_end, pass.active_pixels, state.stats.seconds,
+                                         error_summary(state.film));
                           if (args.checkpoint > 0 && seconds_since(last_checkpoint) >= args.checkpoint) {
                             save_checkpoint(checkpoint, state, print);
                             last_checkpoint = std::chrono::steady_clock::now();
@@ -217,8 +220,9 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
       {"prism.maxDepth", options.path.max_depth},
       {"prism.colorSpace", colorspace},
       {"prism.sceneFeatures", prepared.world->features().to_string()},
+      {"prism.samples", std::to_string(result.stats().samples)},  // with the error estimate's replicates
       {"prism.invalidSamples", std::to_string(result.stats().invalid_samples)},
-      {"prism.estimatedRelRmse", film.estimated_rel_rmse()},
+      {"prism.estimatedRelRmse", ErrorEstimate(film).rel_rmse()},
       {"prism.interrupted", int(result.interrupted)},
   };
   if (options.noise_threshold > 0) image.metadata.push_back({"prism.noiseThreshold", options.noise_threshold});

@@ -10,8 +10,9 @@ namespace prism {
 
 namespace {
 
-// Version 2: exact fixed-point film sums, the part of the render, a checksum at the end.
-constexpr char kMagic[8] = {'P', 'R', 'I', 'S', 'M', 'C', 'K', '2'};
+// Version 3: exact fixed-point film sums (with the second replicate's), the part of the render, a
+// checksum at the end.
+constexpr char kMagic[8] = {'P', 'R', 'I', 'S', 'M', 'C', 'K', '3'};
 
 // The checksum covers every byte after the magic.
 

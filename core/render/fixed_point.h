@@ -8,6 +8,7 @@
 // Resolution: 2^-56 ≈ 1.4e-17 for values, 2^-32 ≈ 2.3e-10 for squares (the error estimate only).
 
 #include <cmath>
+#include <cstdint>
 
 namespace prism {
 
@@ -20,7 +21,12 @@ constexpr double kFixedLimit = 2147483648.0;  // 2^31
 // Whether v can be summed exactly (finite and |v| < kFixedLimit).
 inline bool fixed_in_range(double v) { return std::fabs(v) < kFixedLimit; }  // false for NaN too
 
-inline Fixed to_fixed(double v, int bits = kFixedBits) { return Fixed(std::nearbyint(std::ldexp(v, bits))); }
+// v · 2^bits is exact (a power of two) like ldexp(v, bits), which costs a call per sample; most values
+// fit in 64 bits, whose conversion needs no 128-bit library routine.
+inline Fixed to_fixed(double v, int bits = kFixedBits) {
+  const double r = std::nearbyint(v * double(uint64_t(1) << bits));
+  return std::fabs(r) < 0x1p63 ? Fixed(int64_t(r)) : Fixed(r);
+}
 
 inline double to_double(Fixed f, int bits = kFixedBits) { return std::ldexp(double(f), -bits); }
 

@@ -7,6 +7,7 @@
 #include <optional>
 #include <variant>
 
+#include "base/frame.h"
 #include "base/warp.h"
 #include "render/environment_map.h"
 #include "render/interaction.h"
@@ -18,6 +19,9 @@ namespace prism {
 // The shading point a light is sampled from.
 struct LightSampleContext {
   Vec3f p, p_error, n;
+  // The hemisphere an opaque surface reflects into (its shading normal on wo's side), or zero
+  // when the surface may also transmit: the constant environment samples its cosine there.
+  Vec3f reflect_axis{0.f, 0.f, 0.f};
 };
 
 template <int N>
@@ -127,22 +131,31 @@ struct DirectionalLightSource {
   }
 };
 
-// Constant radiance from every direction, sampled uniformly over the sphere.
+// Constant radiance from every direction. Seen from an opaque surface it is sampled by the cosine
+// about the surface's reflection hemisphere, so that a diffuse lobe's f L cos θ / pdf is constant
+// and no sample is spent below the surface; otherwise uniformly over the sphere.
 struct EnvironmentLight {
   const Spectrum* radiance;
 
   template <int N>
   std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f u,
                                           const SampledWavelengths<N>& lambda) const {
-    const Vec3f wi = sample_uniform_sphere(u);
-    return LightSample<N>{sample(*radiance, lambda), wi, uniform_sphere_pdf(),
-                          spawn_ray(ctx.p, ctx.p_error, ctx.n, wi)};
+    const bool cosine = ctx.reflect_axis != Vec3f(0.f, 0.f, 0.f);
+    const Vec3f wi =
+        cosine ? Frame::from_z(ctx.reflect_axis).to_world(sample_cosine_hemisphere(u)) : sample_uniform_sphere(u);
+    const float pdf = pdf_li(wi, ctx.reflect_axis);
+    if (!(pdf > 0)) return std::nullopt;
+    return LightSample<N>{sample(*radiance, lambda), wi, pdf, spawn_ray(ctx.p, ctx.p_error, ctx.n, wi)};
   }
   template <int N>
   SampledSpectrum<N> Le(const Vec3f&, const SampledWavelengths<N>& lambda) const {
     return sample(*radiance, lambda);
   }
-  float pdf_li(const Vec3f&) const { return uniform_sphere_pdf(); }
+  // The pdf of sample_li from a point of that reflect_axis.
+  float pdf_li(const Vec3f& w, const Vec3f& reflect_axis = {0.f, 0.f, 0.f}) const {
+    if (reflect_axis == Vec3f(0.f, 0.f, 0.f)) return uniform_sphere_pdf();
+    return cosine_hemisphere_pdf(std::max(0.f, dot(w, reflect_axis)));
+  }
 };
 
 // An environment image, importance-sampled by luminance. Each lookup's RGB becomes an
@@ -188,9 +201,10 @@ SampledSpectrum<N> environment_Le(const Light& environment, const Vec3f& w, cons
   if (const auto* map = std::get_if<EnvironmentMapLight>(&environment)) return map->Le(w, lambda);
   return std::get<EnvironmentLight>(environment).Le(w, lambda);
 }
-inline float environment_pdf(const Light& environment, const Vec3f& w) {
+// The pdf of sample_li towards w from a point of that reflect_axis (see LightSampleContext).
+inline float environment_pdf(const Light& environment, const Vec3f& w, const Vec3f& reflect_axis = {0.f, 0.f, 0.f}) {
   if (const auto* map = std::get_if<EnvironmentMapLight>(&environment)) return map->pdf_li(w);
-  return std::get<EnvironmentLight>(environment).pdf_li(w);
+  return std::get<EnvironmentLight>(environment).pdf_li(w, reflect_axis);
 }
 
 }  // namespace prism

@@ -10,8 +10,8 @@ namespace {
 // Next-event estimation: one light chosen by power, weighted against BSDF sampling by MIS.
 template <int N>
 SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& si, const Frame& frame,
-                                 const Bsdf<N>& bsdf, const Vec3f& wo, const SampledWavelengths<N>& lambda,
-                                 Sampler& sampler, RayCounters& counters) {
+                                 const Bsdf<N>& bsdf, const Vec3f& wo, const Vec3f& reflect_axis,
+                                 const SampledWavelengths<N>& lambda, Sampler& sampler, RayCounters& counters) {
   const float u_light = sampler.get_1d();
   const Vec2f u = sampler.get_2d();
   const PowerLightSampler& ls = world.light_sampler();
@@ -19,7 +19,7 @@ SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& s
   const uint32_t index = ls.sample(u_light);
   const float pmf = ls.pmf(index);
   const Light& light = world.lights()[index];
-  const auto c = light_contribution(world, si, frame, bsdf, wo, light, u, lambda, counters);
+  const auto c = light_contribution(world, si, frame, bsdf, wo, light, u, lambda, counters, reflect_axis);
   if (!c || pmf == 0.f) return SampledSpectrum<N>(0.f);
   const float light_pdf = pmf * c->light_pdf;
   const float weight = is_delta(light) ? 1.f : power_heuristic(light_pdf, c->bsdf_pdf);
@@ -34,6 +34,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
   SampledSpectrum<N> L(0.f), beta(1.f);
   bool specular_bounce = false;
   float bsdf_pdf_prev = 0.f;  // solid-angle pdf of the BSDF sample that made `ray`
+  Vec3f reflect_axis_prev;    // where that vertex sampled the environment (see LightSampleContext)
   float eta_scale = 1.f;      // Π η² of the refractions so far: undoes radiance scaling for roulette
   MediumStack media;
   const PowerLightSampler& light_sampler = world.light_sampler();
@@ -59,7 +60,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     if (!si) {
       if (const Light* env = world.environment())
         add_emitted(environment_Le(*env, ray.d, lambda), world.environment_light(),
-                    [&] { return environment_pdf(*env, ray.d); });
+                    [&] { return environment_pdf(*env, ray.d, reflect_axis_prev); });
       break;
     }
     const Material& material = *si->material;
@@ -76,8 +77,9 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     const Bsdf<N> bsdf = make_bsdf<N, Dispersion>(material, si->at, lambda, front);
     const Frame frame = si->shading_frame();
     const Vec3f wo = frame.to_local(si->wo);
+    const Vec3f reflect_axis = material.transmits() ? Vec3f(0.f, 0.f, 0.f) : wo.z < 0 ? -frame.z : frame.z;
     if (options.next_event && !bsdf_is_specular(bsdf))
-      L += beta * sample_direct(world, *si, frame, bsdf, wo, lambda, sampler, counters);
+      L += beta * sample_direct(world, *si, frame, bsdf, wo, reflect_axis, lambda, sampler, counters);
 
     const float uc = sampler.get_1d();
     const auto bs = bsdf_sample_f(bsdf, wo, uc, sampler.get_2d());
@@ -87,6 +89,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     beta *= bs->f * (abs_cos_theta(bs->wi) / bs->pdf);
     specular_bounce = bs->specular;
     bsdf_pdf_prev = bs->pdf;
+    reflect_axis_prev = reflect_axis;
     ray = si->spawn(wi);
     if (bs->transmission) {
       eta_scale *= sqr(bs->eta);

