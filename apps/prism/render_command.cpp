@@ -87,15 +87,16 @@ std::string fingerprint(const RenderArgs& args, const Camera& camera, const Rend
                         std::optional<double> time) {
   const SceneArgs& s = args.scene;
   return fmt::format(
-      "scene={} scene-hash={:016x} time={} env={} env-map={} env-rotate={} env-scale={} camera={} size={}x{} "
+      "scene={} scene-hash={:016x} time={} env={} env-map={} env-rotate={} env-scale={} camera={} "
+      "camera-hash={:016x} size={}x{} "
       "integrator={} "
       "seed={} sampler={} "
       "wavelengths={} max-depth={} light-sampling={} noise-threshold={} aovs={} spectral-bins={} "
       "energy-compensation={} gltf-scene={} variant={} animation={}",
       std::filesystem::absolute(s.scene).string(), scene_hash(s.scene), time ? fmt::format("{}", *time) : "-", s.env,
-      s.env_map, s.env_rotate, s.env_scale, s.camera, camera.width(), camera.height(), integrator_name(o.integrator),
-      o.seed, sampler_name(o.sampler), o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf",
-      o.noise_threshold, o.aovs, o.spectral_bins.to_string(), s.energy_compensation,
+      s.env_map, s.env_rotate, s.env_scale, s.camera, camera.hash(), camera.width(), camera.height(),
+      integrator_name(o.integrator), o.seed, sampler_name(o.sampler), o.wavelengths, o.path.max_depth,
+      o.path.next_event ? "mis" : "bsdf", o.noise_threshold, o.aovs, o.spectral_bins.to_string(), s.energy_compensation,
       s.gltf.scene ? fmt::format("{}", *s.gltf.scene) : "-", s.gltf.variant, s.gltf.animation);
 }
 
@@ -271,15 +272,18 @@ void run(const RenderArgs& args) {
     check_output(frame_path(args.output, int(frame)), "-o");
     if (!args.preview.empty()) check_output(frame_path(args.preview, int(frame)), "--preview");
   }
+  // Loaded at time 0, where a camera Prism places (the file has none) frames the scene for every
+  // frame: a frame's image depends on its number alone, never on the range that renders it (so
+  // the parts of a farmed frame merge into the frame of this sequence).
   SceneArgs scene_args = args.scene;
-  scene_args.gltf.time = range.first / args.fps;
+  scene_args.gltf.time = 0;
   PreparedScene prepared = prepare_scene(scene_args, true);
   if (!prepared.gltf->animated()) log::warn("{}: nothing is animated; every frame is the same image", args.scene.scene);
   const auto t0 = std::chrono::steady_clock::now();
   for (int64_t frame = range.first; frame <= range.last; ++frame) {
     const double time = frame / args.fps;
     log::info("frame {} ({} of {}) at {:.4f} s", frame, frame - range.first + 1, range.last - range.first + 1, time);
-    if (frame > range.first && !pose_scene(prepared, scene_args, time)) log::info("nothing moved: same world");
+    if (!pose_scene(prepared, scene_args, time)) log::verbose("nothing moved: same world");
     if (!render_image(args, prepared, frame_path(args.output, int(frame)),
                       args.preview.empty() ? "" : frame_path(args.preview, int(frame)), time)) {
       log::warn("interrupted: frames after {} not rendered", frame);

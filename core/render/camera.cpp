@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "base/checksum.h"
 #include "base/error.h"
 
 namespace prism {
@@ -35,6 +36,14 @@ Ray Camera::generate_ray(float x, float y) const {
   if (projection_ == CameraDesc::Projection::orthographic)
     return {eye_ + right_ * (sx * half_w_) + up_ * (sy * half_h_), forward_, kInfinity};
   return {eye_, normalize(forward_ + right_ * (sx * half_w_) + up_ * (sy * half_h_)), kInfinity};
+}
+
+uint64_t Camera::hash() const {
+  Checksum sum;
+  const auto add = [&](const auto& v) { sum.add(&v, sizeof(v)); };
+  add(projection_), add(eye_), add(forward_), add(right_), add(up_), add(half_w_), add(half_h_), add(width_),
+      add(height_);
+  return sum.h;
 }
 
 CameraDesc framing_camera(const Bounds3f& bounds, float aspect) {

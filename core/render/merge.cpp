@@ -20,6 +20,18 @@ std::string first_difference(const std::string& a, const std::string& b) {
   return "the options";
 }
 
+// The value of `key=value` in a fingerprint, or "" without it.
+std::string fingerprint_value(const std::string& fingerprint, const std::string& key) {
+  std::istringstream s(fingerprint);
+  std::string token;
+  while (s >> token)
+    if (token.starts_with(key + "=")) return token.substr(key.size() + 1);
+  return "";
+}
+
+// A fingerprint's time= value in words.
+std::string animation_time(const std::string& value) { return value == "-" ? "the file's own pose" : value + " s"; }
+
 PixelWindow frame_window(const RenderPart& part, const Film& film) {
   return part.crop.empty() ? PixelWindow{0, 0, film.width(), film.height()} : part.crop;
 }
@@ -33,7 +45,13 @@ RenderState merge_parts(const std::vector<NamedState>& parts) {
   const NamedState& first = parts.front();
   const Film& film0 = first.state.film;
   const int total = first.state.part.total;
+  const std::string time = fingerprint_value(first.state.fingerprint, "time");
   for (const NamedState& p : parts) {
+    if (const std::string t = fingerprint_value(p.state.fingerprint, "time"); t != time)
+      fail(
+          "{}: a part of the frame at {}, {} of the frame at {}: parts of different frames never merge into one "
+          "image; merge each frame's parts on their own",
+          p.file.string(), animation_time(t), first.file.string(), animation_time(time));
     if (p.state.fingerprint != first.state.fingerprint)
       fail("{}: rendered with another scene or other options than {} ({})", p.file.string(), first.file.string(),
            first_difference(p.state.fingerprint, first.state.fingerprint));

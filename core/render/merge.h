@@ -17,7 +17,8 @@ struct NamedState {
 };
 
 // Fails, naming the part files and what is wrong, unless the parts were rendered with the same
-// fingerprint (scene, options, seed), size and TOTAL, and their (crop, range) pairs cover every
+// fingerprint (scene, options, seed; animation time: parts of different frames never merge), size
+// and TOTAL, and their (crop, range) pairs cover every
 // pixel's samples [0, TOTAL) exactly once.
 RenderState merge_parts(const std::vector<NamedState>& parts);
 

@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "render/image_output.h"
+#include "support/gltf_builder.h"
 #include "support/test_scenes.h"
 
 using namespace prism;
@@ -24,10 +25,12 @@ std::string render_args(int threads, uint64_t seed = 5) {
                      seed, threads);
 }
 
-// Every channel of an EXR image, as bytes.
-std::vector<char> pixels(const std::filesystem::path& exr) {
+// The channels of an EXR image (by default all those render_args writes), as bytes.
+std::vector<char> pixels(const std::filesystem::path& exr,
+                         const std::vector<const char*>& channels = {"R", "G", "B", "variance.Y", "albedo.R",
+                                                                     "albedo.G", "albedo.B"}) {
   std::vector<char> bytes;
-  for (const char* name : {"R", "G", "B", "variance.Y", "albedo.R", "albedo.G", "albedo.B"}) {
+  for (const char* name : channels) {
     const std::vector<float> c = read_exr_channel(exr, name);
     const char* p = reinterpret_cast<const char*>(c.data());
     bytes.insert(bytes.end(), p, p + c.size() * sizeof(float));
@@ -111,4 +114,78 @@ TEST_CASE("merge: refuses parts that do not make the render, and writes nothing"
   refuses(a + scene, "another scene or other options");
   refuses(a + " \"" + corrupt.string() + "\"", "damaged");
   CHECK(test::run_prism("merge" + a + b + " -o \"" + out.string() + "\"") == 0);
+}
+
+namespace {
+
+// `prism farm slurm --dry-run` run without Slurm: its scripts, printed as
+// "# DIR/parts.sbatch\n<script>\n# DIR/merge.sbatch (...)\n<script>", written to DIR.
+struct FarmScripts {
+  std::filesystem::path parts, merge;
+};
+FarmScripts dry_run_scripts(const std::string& farm, const std::filesystem::path& dir) {
+  std::string out;
+  REQUIRE(test::run_prism(farm + " --dry-run", nullptr, &out) == 0);
+  const size_t merge_at = out.find("# " + dir.string() + "/merge.sbatch");
+  REQUIRE(merge_at != std::string::npos);
+  const auto write = [&](const char* name, size_t from, size_t to) {
+    const size_t begin = out.find('\n', from) + 1;
+    std::ofstream(dir / name) << out.substr(begin, to - begin);
+    return dir / name;
+  };
+  std::filesystem::create_directories(dir);
+  return {merge_at == 0 ? std::filesystem::path() : write("parts.sbatch", 0, merge_at),
+          write("merge.sbatch", merge_at, out.size())};
+}
+
+}  // namespace
+
+TEST_CASE("merge: an animation's frames split into parts by the farm's scripts give `prism render --frames`",
+          "[cli][merge]") {
+  const auto dir = test::temp_dir("merge_frames");
+  const std::string scene = test::write_animated_triangle(dir).string();
+  // The morph-target triangle turning about +y (animation "linear"): frames 0 and 1 at 2 fps.
+  const std::string options = "--width 16 --height 16 --env 1,1,1 --animation linear --seed 3";
+  const std::string animation = "--frames 0:1 --fps 2 --spp 7";
+  for (int threads : {1, 2}) {
+    INFO(threads << " threads");
+    const std::filesystem::path farm_dir = dir / fmt::format("farm{}", threads);
+    const std::string farm = fmt::format("farm slurm \"{}\" {} --parts 3 {} --threads {} --out \"{}\"", scene,
+                                         animation, options, threads, farm_dir.string());
+    const FarmScripts scripts = dry_run_scripts(farm, farm_dir);
+    REQUIRE(!scripts.parts.empty());
+    for (int task = 0; task < 6; ++task)
+      REQUIRE(std::system(fmt::format("SLURM_ARRAY_TASK_ID={} sh \"{}\"", task, scripts.parts.string()).c_str()) == 0);
+    for (const char* part : {"frame-0000.part-0", "frame-0000.part-2", "frame-0001.part-0", "frame-0001.part-2"})
+      CHECK(std::filesystem::exists(farm_dir / (part + std::string(".prism-part"))));
+    REQUIRE(std::system(fmt::format("sh \"{}\" >/dev/null", scripts.merge.string()).c_str()) == 0);
+
+    const std::string single = (dir / fmt::format("single{}.####.exr", threads)).string();
+    REQUIRE(test::run_prism(fmt::format("render \"{}\" {} {} --threads {} -q -o \"{}\"", scene, animation, options,
+                                        threads, single)) == 0);
+    for (const char* frame : {"0000", "0001"}) {
+      INFO("frame " << frame);
+      CHECK(pixels(farm_dir / fmt::format("image.{}.exr", frame), {"R", "G", "B"}) ==
+            pixels(dir / fmt::format("single{}.{}.exr", threads, frame), {"R", "G", "B"}));
+    }
+    CHECK(pixels(farm_dir / "image.0000.exr", {"R", "G", "B"}) != pixels(farm_dir / "image.0001.exr", {"R", "G", "B"}));
+
+    INFO("resubmission renders only the missing parts");
+    std::filesystem::remove(farm_dir / "frame-0001.part-1.prism-part");
+    std::string out;
+    REQUIRE(test::run_prism(farm + " --dry-run", nullptr, &out) == 0);
+    CHECK_THAT(out, Catch::Contains("#SBATCH --array=4\n"));
+  }
+
+  INFO("parts of different frames do not merge");
+  const auto part = [&](const char* frame, int part) {
+    return fmt::format(" \"{}\"", (dir / fmt::format("farm1/frame-{}.part-{}.prism-part", frame, part)).string());
+  };
+  std::string err;
+  const std::filesystem::path out = dir / "mixed.exr";
+  CHECK(test::run_prism("merge" + part("0000", 0) + part("0001", 0) + part("0000", 2) + " -o \"" + out.string() + "\"",
+                        &err) == 1);
+  CHECK_THAT(err, Catch::Contains("frame-0001.part-0.prism-part: a part of the frame at 0.5 s") &&
+                      Catch::Contains("parts of different frames never merge"));
+  CHECK_FALSE(std::filesystem::exists(out));
 }
