@@ -8,14 +8,12 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "apps/prism/commands.h"
 #include "apps/prism/film_image.h"
 #include "apps/prism/frame_sequence.h"
 #include "apps/prism/scene_setup.h"
-#include "base/checksum.h"
 #include "base/clock.h"
 #include "base/error.h"
 #include "base/interrupt.h"
@@ -72,18 +70,11 @@ void parse_part(const RenderArgs& args, RenderOptions& o) {
   }
 }
 
-// FNV-1a of the scene file's bytes (its buffers and textures are not included).
-uint64_t scene_hash(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  Checksum sum;
-  char buffer[1 << 16];
-  while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0) sum.add(buffer, uint64_t(in.gcount()));
-  return sum.h;
-}
-
 // Everything that shapes the image but the sample count: a checkpoint resumes, and parts merge,
-// only with these.
-std::string fingerprint(const RenderArgs& args, const Camera& camera, const RenderOptions& o,
+// only with these. The scene is named by its file name and the hash of its content (the file and
+// those it reads), not by its path: parts rendered on nodes that mount the shared folder at other
+// paths still merge.
+std::string fingerprint(const RenderArgs& args, const Scene& scene, const Camera& camera, const RenderOptions& o,
                         std::optional<double> time) {
   const SceneArgs& s = args.scene;
   return fmt::format(
@@ -93,8 +84,8 @@ std::string fingerprint(const RenderArgs& args, const Camera& camera, const Rend
       "seed={} sampler={} "
       "wavelengths={} max-depth={} light-sampling={} noise-threshold={} aovs={} spectral-bins={} "
       "energy-compensation={} gltf-scene={} variant={} animation={}",
-      std::filesystem::absolute(s.scene).string(), scene_hash(s.scene), time ? fmt::format("{}", *time) : "-", s.env,
-      s.env_map, s.env_rotate, s.env_scale, s.camera, camera.hash(), camera.width(), camera.height(),
+      scene.source.filename().string(), scene.source_hash, time ? fmt::format("{}", *time) : "-", s.env, s.env_map,
+      s.env_rotate, s.env_scale, s.camera, camera.hash(), camera.width(), camera.height(),
       integrator_name(o.integrator), o.seed, sampler_name(o.sampler), o.wavelengths, o.path.max_depth,
       o.path.next_event ? "mis" : "bsdf", o.noise_threshold, o.aovs, o.spectral_bins.to_string(), s.energy_compensation,
       s.gltf.scene ? fmt::format("{}", *s.gltf.scene) : "-", s.gltf.variant, s.gltf.animation);
@@ -152,7 +143,7 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
   const std::filesystem::path checkpoint = output + ".checkpoint";
 
   const Camera& camera = *prepared.camera;
-  const std::string print = fingerprint(args, camera, options, time);
+  const std::string print = fingerprint(args, prepared.gltf->scene(), camera, options, time);
   std::optional<RenderState> resume;
   if (args.resume) {
     resume = load_checkpoint(checkpoint, print);

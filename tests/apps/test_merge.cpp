@@ -189,3 +189,31 @@ TEST_CASE("merge: an animation's frames split into parts by the farm's scripts g
                       Catch::Contains("parts of different frames never merge"));
   CHECK_FALSE(std::filesystem::exists(out));
 }
+
+TEST_CASE("merge: parts name the scene by its file name and content, not by its path", "[cli][merge]") {
+  const auto dir = test::temp_dir("merge_relocated");
+  // tri.gltf with its vertices in tri.bin, in three folders: b a copy of a, c with one vertex moved.
+  const auto write = [&](const char* folder, float top) {
+    std::filesystem::create_directories(dir / folder);
+    std::ofstream(dir / folder / "tri.gltf") << R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 2, 0]}],
+  "bufferViews": [{"buffer": 0, "byteLength": 36}], "buffers": [{"uri": "tri.bin", "byteLength": 36}]})";
+    const float vertices[9] = {0, 0, 0, 1, 0, 0, 0, top, 0};
+    std::ofstream(dir / folder / "tri.bin", std::ios::binary)
+        .write(reinterpret_cast<const char*>(vertices), sizeof(vertices));
+  };
+  write("a", 1), write("b", 1), write("c", 2);
+  const auto part = [&](const char* folder, const char* samples) {
+    const std::filesystem::path file = dir / fmt::format("{}{}.prism-part", folder, samples[0]);
+    REQUIRE(test::run_prism(fmt::format("render \"{}\" --width 16 --height 16 --env 1,1,1 --spp 7 --samples {} -q "
+                                        "-o \"{}\"",
+                                        (dir / folder / "tri.gltf").string(), samples, file.string())) == 0);
+    return " \"" + file.string() + "\"";
+  };
+  const std::filesystem::path out = dir / "out.exr";
+  CHECK(test::run_prism("merge" + part("a", "0:3") + part("b", "3:7") + " -o \"" + out.string() + "\"") == 0);
+  std::string err;
+  CHECK(test::run_prism("merge" + part("a", "0:3") + part("c", "3:7") + " -o \"" + out.string() + "\"", &err) == 1);
+  CHECK_THAT(err, Catch::Contains("another scene or other options") && Catch::Contains("scene-hash="));
+}
