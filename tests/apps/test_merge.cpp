@@ -116,6 +116,15 @@ TEST_CASE("merge: refuses parts that do not make the render, and writes nothing"
   CHECK(test::run_prism("merge" + a + b + " -o \"" + out.string() + "\"") == 0);
 }
 
+TEST_CASE("merge: a tile's part file holds the sums of its window only", "[cli][merge]") {
+  const auto dir = test::temp_dir("merge_tile_size");
+  const std::filesystem::path frame = dir / "frame.prism-part", tile = dir / "tile.prism-part";
+  REQUIRE(test::run_prism(render_args(2) + " --samples 0:1 -o \"" + frame.string() + "\"") == 0);
+  REQUIRE(test::run_prism(render_args(2) + " --samples 0:1 --crop 8,8,16,16 -o \"" + tile.string() + "\"") == 0);
+  // 64 of the frame's 1024 pixels; the header is small beside either.
+  CHECK(std::filesystem::file_size(tile) * 12 < std::filesystem::file_size(frame));
+}
+
 namespace {
 
 // `prism farm slurm --dry-run` run without Slurm: its scripts, printed as
