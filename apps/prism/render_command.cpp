@@ -265,7 +265,8 @@ void run(const RenderArgs& args) {
   }
   // Loaded at time 0, where a camera Prism places (the file has none) frames the scene for every
   // frame: a frame's image depends on its number alone, never on the range that renders it (so
-  // the parts of a farmed frame merge into the frame of this sequence).
+  // the parts of a farmed frame merge into the frame of this sequence). The world is built at
+  // the first frame's pose.
   SceneArgs scene_args = args.scene;
   scene_args.gltf.time = 0;
   PreparedScene prepared = prepare_scene(scene_args, true);
