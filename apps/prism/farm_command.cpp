@@ -200,8 +200,8 @@ void add_farm_command(CLI::App& app) {
       "Render SCENE (or its animation's --frames) as a Slurm array job of --parts sample ranges per frame plus a "
       "merge job (README: Slurm)");
   cmd->add_option("scene", args->scene, "glTF 2.0 scene (.gltf or .glb), on the shared filesystem")->required();
-  cmd->add_option("--parts", args->parts, "Array tasks per frame: sample ranges of the render")
-      ->default_val(4)
+  cmd->add_option("--parts", args->parts,
+                  "Sample ranges per frame, one array task each (default 4; with --frames 1: a task per frame)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--spp", args->spp, "Samples per pixel of the whole render")
       ->default_val(16)
@@ -216,6 +216,7 @@ void add_farm_command(CLI::App& app) {
   cmd->allow_extras();
   cmd->callback([args, cmd] {
     args->render_options = cmd->remaining();
+    if (cmd->count("--parts") == 0) args->parts = args->frames.empty() ? 4 : 1;
     run(*args);
   });
 }

@@ -185,6 +185,11 @@ TEST_CASE("merge: an animation's frames split into parts by the farm's scripts g
     REQUIRE(test::run_prism(farm + " --dry-run", nullptr, &out) == 0);
     CHECK_THAT(out, Catch::Contains("#SBATCH --array=4\n"));
   }
+  std::string scripts;
+  REQUIRE(test::run_prism(
+              fmt::format("farm slurm \"{}\" {} --out \"{}\" --dry-run", scene, animation, (dir / "default").string()),
+              nullptr, &scripts) == 0);
+  CHECK_THAT(scripts, Catch::Contains("#SBATCH --array=0-1\n"));  // one part per frame by default
 
   INFO("parts of different frames do not merge");
   const auto part = [&](const char* frame, int part) {
