@@ -1,5 +1,7 @@
 #include "apps/prism/film_image.h"
 
+#include "render/error_estimate.h"
+
 namespace prism {
 
 namespace {
@@ -27,8 +29,9 @@ std::vector<ExrChannel> extra_channels(const Film& film, const std::string& colo
   if (film.aovs() & kAovNormal) add_layer("N", film.normal_image(), "XYZ");
   if (film.aovs() & kAovDepth) channels.push_back({"Z", film.depth_image()});
   if (film.aovs() & kAovVariance) {
+    const ErrorEstimate error(film);
     std::vector<float> v(film.pixel_count());
-    for (size_t p = 0; p < v.size(); ++p) v[p] = float(film.variance_of_mean(p));
+    for (size_t p = 0; p < v.size(); ++p) v[p] = float(error.variance_of_mean(p, 1));
     channels.push_back({"variance.Y", std::move(v)});
   }
   if (film.aovs() & kAovSpp) {

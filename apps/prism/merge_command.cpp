@@ -7,6 +7,7 @@
 #include "apps/prism/commands.h"
 #include "apps/prism/film_image.h"
 #include "base/error.h"
+#include "render/error_estimate.h"
 #include "render/merge.h"
 
 namespace prism {
@@ -31,7 +32,7 @@ void run(const MergeArgs& args) {
       {"prism.seconds", merged.stats.seconds},
       {"prism.invalidSamples", std::to_string(merged.stats.invalid_samples)},
       {"prism.colorSpace", colorspace},
-      {"prism.estimatedRelRmse", merged.film.estimated_rel_rmse()},
+      {"prism.estimatedRelRmse", ErrorEstimate(merged.film).rel_rmse()},
   };
   write_exr(args.output, image, args.half);
   std::printf("wrote %s (%dx%d, %d spp from %zu parts, %s)\n", args.output.c_str(), merged.film.width(),

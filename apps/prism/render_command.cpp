@@ -19,6 +19,7 @@
 #include "base/interrupt.h"
 #include "base/log.h"
 #include "render/checkpoint.h"
+#include "render/error_estimate.h"
 #include "render/image_output.h"
 #include "render/pass_schedule.h"
 
@@ -93,8 +94,9 @@ std::string fingerprint(const RenderArgs& args, const Scene& scene, const Camera
 
 // The image's error as the log and the header state it.
 std::string error_summary(const Film& film) {
+  const ErrorEstimate error(film);
   return fmt::format("estimated relative RMSE {:.4g} (per pixel: median {:.3g}, 90th percentile {:.3g})",
-                     film.estimated_rel_rmse(), film.pixel_rel_rmse_quantile(0.5), film.pixel_rel_rmse_quantile(0.9));
+                     error.rel_rmse(), error.pixel_rel_rmse_quantile(0.5), error.pixel_rel_rmse_quantile(0.9));
 }
 
 struct SampleCounts {
@@ -209,8 +211,9 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
       {"prism.maxDepth", options.path.max_depth},
       {"prism.colorSpace", colorspace},
       {"prism.sceneFeatures", prepared.world->features().to_string()},
+      {"prism.samples", std::to_string(result.stats().samples)},  // with the error estimate's replicates
       {"prism.invalidSamples", std::to_string(result.stats().invalid_samples)},
-      {"prism.estimatedRelRmse", film.estimated_rel_rmse()},
+      {"prism.estimatedRelRmse", ErrorEstimate(film).rel_rmse()},
       {"prism.interrupted", int(result.interrupted)},
   };
   if (options.noise_threshold > 0) image.metadata.push_back({"prism.noiseThreshold", options.noise_threshold});

@@ -10,6 +10,10 @@
 //                so a pixel's first 2^j samples are always one aligned block of the sequence, a
 //                (0,j,2)-net: any count n is the union of the nets of n's binary digits, so it is
 //                stratified at every count, not only at powers of two.
+//                `replicate` > 0 gives the pixel further, independently scrambled copies of its
+//                sequence (randomized QMC replicates, Owen 1997, "Monte Carlo variance of
+//                scrambled net quadrature"), from which the error is estimated
+//                (render/error_estimate.h).
 //   independent: uniform random numbers (a PCG32 stream per pixel, jumped ahead per sample).
 
 #include <cstdint>
@@ -76,8 +80,8 @@ class Sampler {
  public:
   explicit Sampler(uint64_t seed = 0, SamplerKind kind = SamplerKind::sobol) : seed_(seed), kind_(kind) {}
 
-  void start_pixel_sample(Vec2i pixel, int64_t sample_index) {
-    pixel_hash_ = hash_ints(pixel.x, pixel.y, seed_);
+  void start_pixel_sample(Vec2i pixel, int64_t sample_index, int replicate = 0) {
+    pixel_hash_ = replicate == 0 ? hash_ints(pixel.x, pixel.y, seed_) : hash_ints(pixel.x, pixel.y, seed_, replicate);
     reversed_index_ = sobol::reverse_bits(uint32_t(sample_index));
     dimension_ = 0;
     if (kind_ == SamplerKind::independent) {

@@ -1,14 +1,18 @@
 #pragma once
-// Adaptive sampling: after each pass, pixels whose estimated error is below the noise
-// threshold T stop taking samples.
+// Adaptive sampling: after each pass, pixels whose estimated error is below the noise threshold T
+// stop taking samples.
 //
 // A pixel's error is the largest over X, Y and Z (so that colour noise counts, not only luminance
 // noise) of the standard error of the pixel's mean, sqrt(Var[X̂]), divided by sqrt(X · X̄), X the
-// pixel's and X̄ the image's mean. This is Cycles' measure (error over
-// the square root of the pixel's value: the noise a viewer sees through a display curve, so dark
-// pixels are not chased to a relative precision nobody sees) made independent of exposure by Ȳ:
-// scaling the image leaves it unchanged. A pixel stops only when the largest error in its 3×3
-// neighbourhood is below T (as Cycles filters its convergence mask), which makes stopping on a
+// pixel's and X̄ the image's mean. This is Cycles' measure (error over the square root of the
+// pixel's value: the noise a viewer sees through a display curve, so dark pixels are not chased to
+// a relative precision nobody sees) made independent of exposure by Ȳ: scaling the image leaves it
+// unchanged. Var[X̂] is the i.i.d. estimate s²/n, not the calibrated one of error_estimate.h: s²/n
+// is right for pixels whose noise is like plain Monte Carlo's (caustics, fireflies) and too high
+// where the scrambled nets do better (edges, smooth shading), while the image-wide calibration is
+// an average that would let a caustic in an otherwise smooth image stop early. So a pixel below T
+// is converged; a pixel above it may be already. A pixel stops only when the largest error in its
+// 3×3 neighbourhood is below T (as Cycles filters its convergence mask), which makes stopping on a
 // lucky low variance estimate rarer.
 
 #include <array>

@@ -12,14 +12,14 @@ namespace prism {
 
 namespace {
 
-// Version 3: exact fixed-point film sums of the part's window only (the crop, else the frame), the
-// part of the render, a checksum at the end.
-constexpr char kMagic[8] = {'P', 'R', 'I', 'S', 'M', 'C', 'K', '3'};
+// Version 4: exact fixed-point film sums (with the second replicate's) of the part's window only
+// (the crop, else the frame), the part of the render, a checksum at the end.
+constexpr char kMagic[8] = {'P', 'R', 'I', 'S', 'M', 'C', 'K', '4'};
 
 // The checksum covers every byte after the magic.
 
-// Bytes of a film's sums and count per pixel, without AOVs or spectral bins: Σ XYZ and Σ XYZ² in
-// 128-bit fixed point, a 32-bit sample count.
+// Bytes of a film's sums and counts per pixel, at least (without AOVs or spectral bins): Σ XYZ and
+// Σ XYZ² in 128-bit fixed point, a 32-bit sample count.
 constexpr uint64_t kMinBytesPerPixel = 6 * 16 + 4;
 
 // The pixels a state's film fields are stored for: the crop window, or the whole frame.

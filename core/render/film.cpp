@@ -14,10 +14,12 @@ Film::Film(int width, int height, uint32_t aovs, SpectralBins bins)
       sum_(pixel_count() * 3, 0),
       sq_(pixel_count() * 3, 0),
       count_(pixel_count(), 0),
+      second_sum_(pixel_count() * 3, 0),
+      second_count_(pixel_count(), 0),
       aov_(aovs & (kAovAlbedo | kAovNormal | kAovDepth) ? pixel_count() * kAovFields : 0, 0),
       spectral_(pixel_count() * bins_.count(), 0) {}
 
-bool Film::add(size_t p, const FilmSample& s) {
+bool Film::add(size_t p, const FilmSample& s, int replicate) {
   const bool valid = fixed_in_range(s.xyz.x) && fixed_in_range(s.xyz.y) && fixed_in_range(s.xyz.z);
   const Xyz xyz = valid ? s.xyz : Xyz{0, 0, 0};
   Fixed* sum = &sum_[p * 3];
@@ -26,7 +28,12 @@ bool Film::add(size_t p, const FilmSample& s) {
   sum[2] += to_fixed(xyz.z);
   const double v[3] = {xyz.x, xyz.y, xyz.z};
   for (int c = 0; c < 3; ++c) sq_[p * 3 + c] += to_fixed(v[c] * v[c], kFixedSquareBits);
-  ++count_[p];
+  if (replicate == 0) {
+    ++count_[p];
+  } else {
+    for (int c = 0; c < 3; ++c) second_sum_[p * 3 + c] += to_fixed(v[c]);
+    ++second_count_[p];
+  }
   if (!aov_.empty() && valid) {
     Fixed* a = &aov_[p * kAovFields];
     const float values[6] = {s.albedo.x, s.albedo.y, s.albedo.z, s.normal.x, s.normal.y, s.normal.z};
@@ -49,41 +56,41 @@ void Film::merge(const Film& other) {
   const auto add = [](auto& into, const auto& from) {
     for (size_t i = 0; i < into.size(); ++i) into[i] += from[i];
   };
-  add(sum_, other.sum_), add(sq_, other.sq_), add(count_, other.count_), add(aov_, other.aov_),
-      add(spectral_, other.spectral_);
+  add(sum_, other.sum_), add(sq_, other.sq_), add(count_, other.count_), add(second_sum_, other.second_sum_),
+      add(second_count_, other.second_count_), add(aov_, other.aov_), add(spectral_, other.spectral_);
+}
+
+double Film::mean(size_t p, int c) const { return to_double(sum_[p * 3 + c]) / all_samples(p); }
+
+double Film::replicate_mean(size_t p, int c, int replicate) const {
+  const double second = to_double(second_sum_[p * 3 + c]);
+  if (replicate == 1) return second_count_[p] > 0 ? second / second_count_[p] : 0.0;
+  return count_[p] > 0 ? (to_double(sum_[p * 3 + c]) - second) / count_[p] : 0.0;
 }
 
 // s²/n with s² = (Σy² − (Σy)²/n) / (n − 1), the unbiased sample variance, from the exact sums.
 double Film::variance_of_mean(size_t p, int c) const {
-  const uint32_t n = count_[p];
+  const uint32_t n = count_[p] + second_count_[p];
   if (n < 2) return 0.0;
   const double sy = to_double(sum_[p * 3 + c]), sy2 = to_double(sq_[p * 3 + c], kFixedSquareBits);
   return std::max(0.0, (sy2 - sy * sy / n) / (double(n - 1) * n));
 }
 
-namespace {
-
 // Per-pixel means of `fields` consecutive sums per pixel, each divided by the pixel's count.
-std::vector<float> means(const std::vector<Fixed>& sums, const std::vector<uint32_t>& count, int fields,
-                         const std::vector<double>& scale = {}) {
+std::vector<float> Film::means(const std::vector<Fixed>& sums, int fields, const std::vector<double>& scale) const {
   std::vector<float> out(sums.size());
-  for (size_t p = 0; p < count.size(); ++p)
-    for (int f = 0; f < fields; ++f) {
-      const double n = std::max<uint32_t>(count[p], 1);
-      out[p * fields + f] = float(to_double(sums[p * fields + f]) / n * (scale.empty() ? 1.0 : scale[f]));
-    }
+  for (size_t p = 0; p < pixel_count(); ++p)
+    for (int f = 0; f < fields; ++f)
+      out[p * fields + f] = float(to_double(sums[p * fields + f]) / all_samples(p) * (scale.empty() ? 1.0 : scale[f]));
   return out;
 }
 
-}  // namespace
-
-std::vector<float> Film::xyz_image() const { return means(sum_, count_, 3); }
+std::vector<float> Film::xyz_image() const { return means(sum_, 3); }
 
 std::vector<float> Film::albedo_image() const {
   std::vector<float> out(pixel_count() * 3);
   for (size_t p = 0; p < pixel_count(); ++p)
-    for (int c = 0; c < 3; ++c)
-      out[p * 3 + c] = float(to_double(aov_[p * kAovFields + c]) / std::max<uint32_t>(count_[p], 1));
+    for (int c = 0; c < 3; ++c) out[p * 3 + c] = float(to_double(aov_[p * kAovFields + c]) / all_samples(p));
   return out;
 }
 
@@ -112,26 +119,7 @@ std::vector<float> Film::spectral_image() const {
   // divided by the bin's width, is the bin's mean spectral radiance.
   std::vector<double> inv_width(bins_.count());
   for (int i = 0; i < bins_.count(); ++i) inv_width[i] = 1.0 / bins_.width(i);
-  return means(spectral_, count_, bins_.count(), inv_width);
-}
-
-double Film::estimated_rel_rmse() const {
-  double variance = 0, y = 0;
-  for (size_t p = 0; p < pixel_count(); ++p) {
-    variance += variance_of_mean(p);
-    y += mean_y(p);
-  }
-  return y > 0 ? std::sqrt(variance / pixel_count()) / (y / pixel_count()) : 0.0;
-}
-
-double Film::pixel_rel_rmse_quantile(double q) const {
-  std::vector<double> e;
-  for (size_t p = 0; p < pixel_count(); ++p)
-    if (mean_y(p) > 0) e.push_back(std::sqrt(variance_of_mean(p)) / mean_y(p));
-  if (e.empty()) return 0.0;
-  const size_t k = std::min(e.size() - 1, size_t(q * double(e.size())));
-  std::nth_element(e.begin(), e.begin() + k, e.end());
-  return e[k];
+  return means(spectral_, bins_.count(), inv_width);
 }
 
 }  // namespace prism

@@ -1,7 +1,8 @@
 #pragma once
 // The film: per pixel, the sum of its CIE XYZ sample estimates (box filter over the pixel's
-// area) and their count, the sums of the squares of the samples' X, Y and Z for the pixel's
-// own error, and on request the first-hit AOV sums and spectral bins.
+// area) and their count, the sums of the squares of the samples' X, Y and Z and the XYZ sum of
+// the pixel's second replicate (if it takes one) for the error estimate (error_estimate.h), and
+// on request the first-hit AOV sums and spectral bins.
 //
 // Every sum is exact: each sample is rounded once to a fixed-point integer (fixed_point.h) and
 // integers add associatively. So a film is a pure function of WHICH samples each pixel took,
@@ -10,6 +11,7 @@
 // image equals the single render bit for bit. A sample whose XYZ lies outside the fixed-point
 // range (|value| >= kFixedLimit) counts as invalid, like NaN and Inf, and is added as 0.
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -45,9 +47,10 @@ class Film {
   uint32_t aovs() const { return aovs_; }
   const SpectralBins& bins() const { return bins_; }
 
-  // Adds one sample of pixel p (index y·width + x). A NaN, Inf or out-of-range estimate counts
-  // as a sample of 0; returns false for it (the caller counts it as invalid).
-  bool add(size_t p, const FilmSample& s);
+  // Adds one sample of pixel p (index y·width + x) from the sampler's replicate 0 or 1. A NaN,
+  // Inf or out-of-range estimate counts as a sample of 0; returns false for it (the caller
+  // counts it as invalid).
+  bool add(size_t p, const FilmSample& s, int replicate = 0);
   // Adds every sum and count of `other` (a film of the same size, AOVs and bins) to this one.
   void merge(const Film& other);
   bool same_layout(const Film& other) const {
@@ -59,13 +62,16 @@ class Film {
   // PR 550).
   void add_spectral(size_t p, float lambda, double weighted_radiance);
 
+  // The sample indices pixel p has taken (the samples of its replicate 0), and those its second
+  // replicate took.
   uint32_t samples(size_t p) const { return count_[p]; }
-  // Mean luminance Y of pixel p and the estimated variance of that mean: s²/n, with s² the
-  // unbiased sample variance of the pixel's samples.
-  // Mean of channel c (0, 1, 2: X, Y, Z) of pixel p's samples, and the estimated variance of that
-  // mean: s²/n, with s² the unbiased sample variance of the pixel's samples.
-  double mean(size_t p, int c) const { return count_[p] > 0 ? to_double(sum_[p * 3 + c]) / count_[p] : 0.0; }
+  uint32_t second_replicate_samples(size_t p) const { return second_count_[p]; }
+  // Mean of channel c (0, 1, 2: X, Y, Z) of all pixel p's samples, and s²/n with s² their
+  // unbiased sample variance: the variance of that mean if the samples were independent.
+  double mean(size_t p, int c) const;
   double variance_of_mean(size_t p, int c) const;
+  // Mean of channel c of the samples of pixel p's replicate 0 and of its replicate 1.
+  double replicate_mean(size_t p, int c, int replicate) const;
   // The same for the luminance Y.
   double mean_y(size_t p) const { return mean(p, 1); }
   double variance_of_mean(size_t p) const { return variance_of_mean(p, 1); }
@@ -79,35 +85,32 @@ class Film {
   std::vector<float> depth_image() const;
   std::vector<float> spectral_image() const;
 
-  // Estimated relative RMSE of the image's luminance: sqrt(mean over pixels of the variance of
-  // each pixel's mean) / mean luminance. (The true value replaces the variance by the squared
-  // error against the converged image.)
-  double estimated_rel_rmse() const;
-  // Per-pixel relative RMSE sqrt(variance of the mean) / Y, at the given quantile (0..1) over
-  // the pixels with Y > 0.
-  double pixel_rel_rmse_quantile(double q) const;
-
   // The raw fields, in a fixed order, for checkpoint files (to write, and to read back).
   template <typename Visit>
   void visit_fields(Visit&& visit) const {
-    visit(sum_), visit(sq_), visit(count_), visit(aov_), visit(spectral_);
+    visit(sum_), visit(sq_), visit(count_), visit(second_sum_), visit(second_count_), visit(aov_), visit(spectral_);
   }
   template <typename Visit>
   void visit_fields(Visit&& visit) {
-    visit(sum_), visit(sq_), visit(count_), visit(aov_), visit(spectral_);
+    visit(sum_), visit(sq_), visit(count_), visit(second_sum_), visit(second_count_), visit(aov_), visit(spectral_);
   }
 
  private:
   static constexpr int kAovFields = 8;  // albedo XYZ, normal XYZ, depth sum, hit count
 
+  double all_samples(size_t p) const { return std::max(count_[p] + second_count_[p], 1u); }
+  std::vector<float> means(const std::vector<Fixed>& sums, int fields, const std::vector<double>& scale = {}) const;
+
   int width_, height_;
   uint32_t aovs_;
   SpectralBins bins_;
-  std::vector<Fixed> sum_;       // XYZ sums
-  std::vector<Fixed> sq_;        // Σ X², Σ Y², Σ Z², at kFixedSquareBits
-  std::vector<uint32_t> count_;  // samples
-  std::vector<Fixed> aov_;       // kAovFields sums per pixel, when AOVs are on
-  std::vector<Fixed> spectral_;  // bins_.count() sums per pixel
+  std::vector<Fixed> sum_;              // XYZ sums of all samples
+  std::vector<Fixed> sq_;               // Σ X², Σ Y², Σ Z², at kFixedSquareBits
+  std::vector<uint32_t> count_;         // samples of replicate 0
+  std::vector<Fixed> second_sum_;       // XYZ sums of replicate 1
+  std::vector<uint32_t> second_count_;  // samples of replicate 1
+  std::vector<Fixed> aov_;              // kAovFields sums per pixel, when AOVs are on
+  std::vector<Fixed> spectral_;         // bins_.count() sums per pixel
 };
 
 }  // namespace prism

@@ -8,6 +8,7 @@
 #include "base/parallel.h"
 #include "base/progress.h"
 #include "render/adaptive_sampling.h"
+#include "render/error_estimate.h"
 #include "render/pass_schedule.h"
 #include "render/whitted_integrator.h"
 #include "spectral/cie.h"
@@ -47,8 +48,9 @@ struct CameraSample {
 // alone, through the camera and the radiance estimator to CIE XYZ.
 template <int N>
 CameraSample<N> camera_sample(const World& world, const Camera& camera, const RenderOptions& options,
-                              RadianceFn<N> radiance, Sampler& sampler, Vec2i pixel, int s, RayCounters& rays) {
-  sampler.start_pixel_sample(pixel, s);
+                              RadianceFn<N> radiance, Sampler& sampler, Vec2i pixel, int s, int replicate,
+                              RayCounters& rays) {
+  sampler.start_pixel_sample(pixel, s, replicate);
   const Vec2f jitter = sampler.get_2d();
   CameraSample<N> c{SampledWavelengths<N>::sample(sampler.get_2d()), {}, {}, {}};
   c.ray = camera.generate_ray(float(pixel.x) + jitter.x, float(pixel.y) + jitter.y);
@@ -95,12 +97,16 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
     for (int x = x0; x < x1; ++x) {
       const size_t p = size_t(y) * camera.width() + x;
       if (!active.empty() && !active[p]) continue;
-      for (int s = options.sample_begin + int(film.samples(p)); s < end; ++s) {
-        const CameraSample<N> c = camera_sample<N>(world, camera, options, radiance, sampler, {x, y}, s, stats.rays);
+      // Each sample index once, or in the pixels the error estimate replicates twice (error_estimate.h).
+      const int replicates = replicated_pixel({x, y}, options.seed) ? 2 : 1;
+      for (int64_t k = int64_t(options.sample_begin + film.samples(p)) * replicates; k < int64_t(end) * replicates;
+           ++k) {
+        const int s = int(k / replicates), r = int(k % replicates);
+        const CameraSample<N> c = camera_sample<N>(world, camera, options, radiance, sampler, {x, y}, s, r, stats.rays);
         FilmSample fs{c.xyz};
         if (first_hits) first_hit<N>(world, c.ray, c.lambda, fs);
         ++stats.samples;
-        if (!film.add(p, fs)) ++stats.invalid;
+        if (!film.add(p, fs, r)) ++stats.invalid;
         if (bins)
           for (int i = 0; i < N; ++i)
             if (c.lambda.pdf()[i] > 0) film.add_spectral(p, c.lambda[i], double(c.L[i]) / (c.lambda.pdf()[i] * N));
@@ -165,7 +171,8 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
       result.interrupted = true;
       break;
     }
-    if (options.time_limit > 0 && seconds_since(start) >= options.time_limit) {
+    // The limit counts the sessions before a resume too (their seconds are in the checkpoint).
+    if (options.time_limit > 0 && state.stats.seconds >= options.time_limit) {
       result.timed_out = true;
       break;
     }

@@ -165,6 +165,26 @@ TEST_CASE("the Sobol sampler is a (0,2)-sequence in every 2D request, at every c
   }
 }
 
+TEST_CASE("the Sobol sampler's replicate 1 is another (0,2)-sequence, scrambled independently of replicate 0") {
+  // The error estimate (render/error_estimate.h) needs a second net of the same pixel, stratified
+  // like the first but with its own scramble.
+  for (const int m : {2, 4, 6}) {
+    std::vector<Vec2f> first, second;
+    Sampler sampler(11, SamplerKind::sobol);
+    for (int s = 0; s < 1 << m; ++s) {
+      sampler.start_pixel_sample({3, 7}, s, 1);
+      second.push_back(sampler.get_2d());
+      sampler.start_pixel_sample({3, 7}, s, 0);
+      first.push_back(sampler.get_2d());
+    }
+    INFO("2^" << m << " samples");
+    CHECK(elementary_interval_counts(second, m) == std::pair{1, 1});
+    int same = 0;
+    for (int s = 0; s < 1 << m; ++s) same += first[s].x == second[s].x;
+    CHECK(same == 0);
+  }
+}
+
 TEST_CASE("the Sobol sampler's dimensions are uncorrelated: pixel jitter against a BSDF sample (chi-square)") {
   // The (jitter x, BSDF direction u) pairs of 256 pixels x 64 samples in a 16 x 16 histogram.
   // Padding shuffles each dimension's samples independently, so the pairs are uniform; without
