@@ -50,11 +50,12 @@ struct PreparedScene {
 };
 
 // Loads and prepares the scene, logging what it found; fails with a clear message on bad input.
-// Unless `keep_file` (to re-pose it with pose_scene), the parsed file is freed once loaded.
+// Unless `keep_file` (to re-pose it with pose_scene), the parsed file is freed once loaded. With
+// `keep_file` only the camera is placed: the first pose_scene builds the world, at its pose.
 PreparedScene prepare_scene(const SceneArgs& args, bool keep_file = false);
 
 // Poses the scene at `seconds` of its animations and rebuilds its world and camera, only when
-// something moved; returns whether it did.
+// something moved or the world was not built yet; returns whether it did.
 bool pose_scene(PreparedScene& prepared, const SceneArgs& args, double seconds);
 
 const char* integrator_name(IntegratorKind kind);
