@@ -34,16 +34,19 @@ class ConductorBsdf {
         roughness_(compensate_ ? SpecularAlbedo::roughness(distribution.alpha()) : SpecularAlbedo::Roughness{}),
         n_(n),
         k_(k),
-        film_(film) {}
+        film_(film) {
+    if constexpr (Extensions)
+      if (film_ && compensate_) film_f0_ = reflectance(1.f);
+  }
 
   bool is_specular() const { return smooth_; }
 
   SampledSpectrum<N> reflectance(float cos_theta) const {
-    SampledSpectrum<N> r;
-    for (int i = 0; i < N; ++i) r[i] = fresnel_conductor(cos_theta, n_[i], k_[i]);
     if constexpr (Extensions)
       if (film_)
-        for (int i = 0; i < N; ++i) r[i] = film_->reflectance(i, std::abs(cos_theta), {n_[i], k_[i]}, r[i]);
+        return film_->reflectance(std::abs(cos_theta), [&](int i) { return std::complex<float>(n_[i], k_[i]); });
+    SampledSpectrum<N> r;
+    for (int i = 0; i < N; ++i) r[i] = fresnel_conductor(cos_theta, n_[i], k_[i]);
     return r;
   }
 
@@ -99,7 +102,7 @@ class ConductorBsdf {
       const float f0 = n_[i] == 0 && k_[i] == 0 ? 1.f : (sqr(n_[i] - 1) + k2) / (sqr(n_[i] + 1) + k2);
       const float f0_film = [&] {
         if constexpr (Extensions)
-          if (film_) return film_->reflectance(i, 1.f, {n_[i], k_[i]}, f0);
+          if (film_f0_) return (*film_f0_)[i];
         return f0;
       }();
       r[i] = 1 + f0_film * (1 - e) / e;
@@ -112,6 +115,8 @@ class ConductorBsdf {
   SpecularAlbedo::Roughness roughness_;  // where α falls on the albedo tables, when compensating
   SampledSpectrum<N> n_, k_;
   [[no_unique_address]] OptionalPart<Extensions, FilmLanes<N>> film_;
+  [[no_unique_address]] OptionalPart<Extensions, SampledSpectrum<N>>
+      film_f0_;  // the film's reflectance at normal incidence
 };
 
 }  // namespace prism

@@ -75,13 +75,13 @@ class DielectricBsdf {
     const float c = thin_ ? std::abs(cos_theta) : cos_theta;
     if constexpr (Extensions)
       if (lanes_) {
+        const auto eta = [&](int i) { return lanes_->eta ? (*lanes_->eta)[i] : eta_; };
         SampledSpectrum<N> R;
-        for (int i = 0; i < N; ++i) {
-          const float eta = lanes_->eta ? (*lanes_->eta)[i] : eta_;
-          float r = fresnel_dielectric(c, eta);
-          if (lanes_->film) r = lanes_->film->reflectance(i, c, eta, r);
-          R[i] = wall(specular_ * r);
-        }
+        if (lanes_->film)
+          R = lanes_->film->reflectance(c, [&](int i) { return std::complex<float>(eta(i)); });
+        else
+          for (int i = 0; i < N; ++i) R[i] = fresnel_dielectric(c, eta(i));
+        for (int i = 0; i < N; ++i) R[i] = wall(specular_ * R[i]);
         return R;
       }
     return SampledSpectrum<N>(wall(specular_ * fresnel_dielectric(c, eta_)));

@@ -256,11 +256,13 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
       lanes->eta = reflecting;
     }
     extras.lane_etas = reflecting;
-    if (film)  // the film's reflectance peaks as a quarter-wave layer's, an interface of index n_f²/η
+    if (film) {  // coupled as an interface of the film's peak reflectance, and its excess (thin_film.h)
+      extras.lane_excess.emplace();
       for (int i = 0; i < N; ++i) {
-        const float quarter_wave = sqr(film_lanes->ior[i]) / reflecting[i];
-        (*extras.lane_etas)[i] = std::max({reflecting[i], quarter_wave, 1 / quarter_wave});
+        (*extras.lane_etas)[i] = film_coupling_index(film_lanes->ior[i], reflecting[i]);
+        (*extras.lane_excess)[i] = p.iridescence * film_reflectance_excess(film_lanes->ior[i], reflecting[i]);
       }
+    }
   }
   // A film's interface stays single-scattering (see dielectric_bsdf.h), and so does its E below.
   const bool dielectric_ms = ms && !film;

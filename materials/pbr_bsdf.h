@@ -10,9 +10,12 @@
 // (KHR_materials_diffuse_transmission: a thin wall, light leaves the other face diffusely).
 // E is the albedo of the dielectric's lobe for its index η; when a specular colour or a thin
 // film make the reflectance differ by lane, each lane couples with its own index η_λ: the
-// coloured one (exact), or with a film the index of its highest reflectance at normal incidence
-// (a quarter-wave layer's, n_f²/η). That bounds the film's albedo except near grazing when
-// n_f² > η: a white diffuse under a film of n_f = 1.8 reflects up to 0.9% too much at 87°.
+// coloured one (exact), or with a film an upper bound of the film's albedo, which no single index
+// gives (the film's reflectance rises above any interface's somewhere towards grazing): the
+// albedo of the interface of the film's peak reflectance at normal incidence (a quarter-wave
+// layer's, n_f²/η) plus the white lobe's times x, the most the film's reflectance exceeds that
+// interface's at any angle (film_reflectance_excess, thin_film.h):
+//   E_λ(μ) = E(μ, η_λ) + x_λ E_white(μ),  so that the film's albedo ≤ E_λ and the whole ≤ 1.
 // Sampled by choosing a lobe with probability ∝ its albedo seen from wo, then sampling it; f and
 // pdf of non-delta directions are those of the whole mixture (for MIS). Without transmission
 // the surface is opaque and two-sided: seen from behind, it is the same as from the front.
@@ -41,6 +44,7 @@ class PbrBsdf {
     float diffuse_transmission = 0;
     SampledSpectrum<N> transmitted_albedo{0.f};
     std::optional<SampledSpectrum<N>> lane_etas;
+    std::optional<SampledSpectrum<N>> lane_excess;  // x_λ of a film (see the header)
   };
 
   // alpha, eta, specular and compensated must be those of `dielectric` (they pick its albedo E).
@@ -61,10 +65,12 @@ class PbrBsdf {
       if (!extras) return;
       extras_ = Parts{extras->diffuse_transmission, extras->transmitted_albedo, {}};
       if (!extras->lane_etas) return;
-      extras_->lanes = LaneCoupling{*extras->lane_etas, {}};
+      extras_->lanes = LaneCoupling{*extras->lane_etas, extras->lane_excess.value_or(SampledSpectrum<N>(0.f)), {}};
+      const float white_average = extras->lane_excess ? SpecularAlbedo::table().white_average(alpha) : 0.f;
       for (int i = 0; i < N; ++i)
         extras_->lanes->e_avg[i] =
-            specular * SpecularAlbedo::table().average(roughness_, (*extras->lane_etas)[i], compensated);
+            specular * (SpecularAlbedo::table().average(roughness_, (*extras->lane_etas)[i], compensated) +
+                        extras_->lanes->excess[i] * white_average);
     }
   }
 
@@ -154,12 +160,18 @@ class PbrBsdf {
     } else {
       if (!extras_ || !extras_->lanes) return SampledSpectrum<N>(scalar_coupling(wo, wi));
       const LaneCoupling& lanes = *extras_->lanes;
+      const bool film = lanes.excess.max() > 0;
+      const float white_o = film ? SpecularAlbedo::table().white(std::abs(wo.z), roughness_) : 0.f,
+                  white_i = film ? SpecularAlbedo::table().white(std::abs(wi.z), roughness_) : 0.f;
       SampledSpectrum<N> c;
       for (int i = 0; i < N; ++i) {
-        const auto lane_E = [&](float mu) {
-          return specular_ * SpecularAlbedo::table().E(std::abs(mu), roughness_, lanes.eta[i], compensated_);
+        const auto lane_E = [&](float mu, float white) {
+          return specular_ * (SpecularAlbedo::table().E(std::abs(mu), roughness_, lanes.eta[i], compensated_) +
+                              lanes.excess[i] * white);
         };
-        c[i] = lanes.e_avg[i] < 1 ? (1 - lane_E(wo.z)) * (1 - lane_E(wi.z)) / (1 - lanes.e_avg[i]) : 0.f;
+        c[i] = lanes.e_avg[i] < 1 ? std::max(0.f, 1 - lane_E(wo.z, white_o)) *
+                                        std::max(0.f, 1 - lane_E(wi.z, white_i)) / (1 - lanes.e_avg[i])
+                                  : 0.f;
       }
       return c;
     }
@@ -200,7 +212,7 @@ class PbrBsdf {
   }
 
   struct LaneCoupling {
-    SampledSpectrum<N> eta, e_avg;
+    SampledSpectrum<N> eta, excess, e_avg;
   };
   struct Parts {
     float diffuse_transmission;

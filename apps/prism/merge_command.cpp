@@ -7,7 +7,6 @@
 #include "apps/prism/commands.h"
 #include "apps/prism/film_image.h"
 #include "base/error.h"
-#include "render/checkpoint.h"
 #include "render/error_estimate.h"
 #include "render/merge.h"
 
@@ -23,14 +22,12 @@ struct MergeArgs {
 
 void run(const MergeArgs& args) {
   const std::string colorspace = ColorPipeline::standard().canonical_name(args.colorspace);
-  std::vector<NamedState> parts;
-  for (const std::string& file : args.parts) parts.push_back({file, load_render_state(file)});
-  const RenderState merged = merge_parts(parts);
+  const RenderState merged = merge_parts({args.parts.begin(), args.parts.end()});
   ExrImage image = film_image(merged.film, colorspace);
   image.metadata = {
       {"software", std::string("Prism " PRISM_VERSION)},
       {"prism.spp", merged.part.total},
-      {"prism.mergedParts", int(parts.size())},
+      {"prism.mergedParts", int(args.parts.size())},
       {"prism.renderOptions", merged.fingerprint},
       {"prism.seconds", merged.stats.seconds},
       {"prism.invalidSamples", std::to_string(merged.stats.invalid_samples)},
@@ -39,7 +36,7 @@ void run(const MergeArgs& args) {
   };
   write_exr(args.output, image, args.half);
   std::printf("wrote %s (%dx%d, %d spp from %zu parts, %s)\n", args.output.c_str(), merged.film.width(),
-              merged.film.height(), merged.part.total, parts.size(), colorspace.c_str());
+              merged.film.height(), merged.part.total, args.parts.size(), colorspace.c_str());
 }
 
 }  // namespace

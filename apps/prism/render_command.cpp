@@ -8,14 +8,12 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "apps/prism/commands.h"
 #include "apps/prism/film_image.h"
 #include "apps/prism/frame_sequence.h"
 #include "apps/prism/scene_setup.h"
-#include "base/checksum.h"
 #include "base/clock.h"
 #include "base/error.h"
 #include "base/interrupt.h"
@@ -73,29 +71,23 @@ void parse_part(const RenderArgs& args, RenderOptions& o) {
   }
 }
 
-// FNV-1a of the scene file's bytes (its buffers and textures are not included).
-uint64_t scene_hash(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  Checksum sum;
-  char buffer[1 << 16];
-  while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0) sum.add(buffer, uint64_t(in.gcount()));
-  return sum.h;
-}
-
 // Everything that shapes the image but the sample count: a checkpoint resumes, and parts merge,
-// only with these.
-std::string fingerprint(const RenderArgs& args, const Camera& camera, const RenderOptions& o,
+// only with these. The scene is named by its file name and the hash of its content (the file and
+// those it reads), not by its path: parts rendered on nodes that mount the shared folder at other
+// paths still merge.
+std::string fingerprint(const RenderArgs& args, const Scene& scene, const Camera& camera, const RenderOptions& o,
                         std::optional<double> time) {
   const SceneArgs& s = args.scene;
   return fmt::format(
-      "scene={} scene-hash={:016x} time={} env={} env-map={} env-rotate={} env-scale={} camera={} size={}x{} "
+      "scene={} scene-hash={:016x} time={} env={} env-map={} env-rotate={} env-scale={} camera={} "
+      "camera-hash={:016x} size={}x{} "
       "integrator={} merge-radius={} "
       "seed={} sampler={} "
       "wavelengths={} max-depth={} light-sampling={} noise-threshold={} aovs={} spectral-bins={} "
       "energy-compensation={} gltf-scene={} variant={} animation={}",
-      std::filesystem::absolute(s.scene).string(), scene_hash(s.scene), time ? fmt::format("{}", *time) : "-", s.env,
-      s.env_map, s.env_rotate, s.env_scale, s.camera, camera.width(), camera.height(), integrator_name(o.integrator),
-      o.merge_radius, o.seed, sampler_name(o.sampler), o.wavelengths, o.path.max_depth,
+      scene.source.filename().string(), scene.source_hash, time ? fmt::format("{}", *time) : "-", s.env, s.env_map,
+      s.env_rotate, s.env_scale, s.camera, camera.hash(), camera.width(), camera.height(),
+      integrator_name(o.integrator), o.merge_radius, o.seed, sampler_name(o.sampler), o.wavelengths, o.path.max_depth,
       o.path.next_event ? "mis" : "bsdf", o.noise_threshold, o.aovs, o.spectral_bins.to_string(), s.energy_compensation,
       s.gltf.scene ? fmt::format("{}", *s.gltf.scene) : "-", s.gltf.variant, s.gltf.animation);
 }
@@ -153,7 +145,7 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
   const std::filesystem::path checkpoint = output + ".checkpoint";
 
   const Camera& camera = *prepared.camera;
-  const std::string print = fingerprint(args, camera, options, time);
+  const std::string print = fingerprint(args, prepared.gltf->scene(), camera, options, time);
   std::optional<RenderState> resume;
   if (args.resume) {
     resume = load_checkpoint(checkpoint, print);
@@ -275,15 +267,19 @@ void run(const RenderArgs& args) {
     check_output(frame_path(args.output, int(frame)), "-o");
     if (!args.preview.empty()) check_output(frame_path(args.preview, int(frame)), "--preview");
   }
+  // Loaded at time 0, where a camera Prism places (the file has none) frames the scene for every
+  // frame: a frame's image depends on its number alone, never on the range that renders it (so
+  // the parts of a farmed frame merge into the frame of this sequence). The world is built at
+  // the first frame's pose.
   SceneArgs scene_args = args.scene;
-  scene_args.gltf.time = range.first / args.fps;
+  scene_args.gltf.time = 0;
   PreparedScene prepared = prepare_scene(scene_args, true);
   if (!prepared.gltf->animated()) log::warn("{}: nothing is animated; every frame is the same image", args.scene.scene);
   const auto t0 = std::chrono::steady_clock::now();
   for (int64_t frame = range.first; frame <= range.last; ++frame) {
     const double time = frame / args.fps;
     log::info("frame {} ({} of {}) at {:.4f} s", frame, frame - range.first + 1, range.last - range.first + 1, time);
-    if (frame > range.first && !pose_scene(prepared, scene_args, time)) log::info("nothing moved: same world");
+    if (!pose_scene(prepared, scene_args, time)) log::verbose("nothing moved: same world");
     if (!render_image(args, prepared, frame_path(args.output, int(frame)),
                       args.preview.empty() ? "" : frame_path(args.preview, int(frame)), time)) {
       log::warn("interrupted: frames after {} not rendered", frame);

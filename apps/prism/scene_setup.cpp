@@ -185,9 +185,11 @@ void add_render_options(CLI::App* cmd, RenderOptions& options) {
 
 namespace {
 
-void build_world(PreparedScene& p, const SceneArgs& args) {
+// The camera for the scene as posed: the file's (which may move), or one framing the scene, which
+// stays as the first pose framed it.
+void place_camera(PreparedScene& p, const SceneArgs& args) {
   const Scene& scene = p.gltf->scene();
-  if (!p.camera || !scene.cameras.empty()) {  // a framing camera stays as the first pose framed it
+  if (!p.camera || !scene.cameras.empty()) {
     const CameraDesc camera_desc = choose_camera(scene, args);
     const Vec2i size = resolve_resolution(args.width, args.height, camera_desc);
     const uint64_t max_memory = max_memory_bytes(args);
@@ -196,19 +198,25 @@ void build_world(PreparedScene& p, const SceneArgs& args) {
            double(size.x) * size.y * kBytesPerPixel / 1e9, max_memory / 1e9);
     p.camera = std::make_unique<Camera>(camera_desc, size.x, size.y);
   }
+}
 
+void build_world(PreparedScene& p, const SceneArgs& args) {
+  const bool first = !p.world;
   const auto t0 = std::chrono::steady_clock::now();
   p.world.reset();
-  p.world = std::make_unique<World>(scene);
+  p.world = std::make_unique<World>(p.gltf->scene());
   log::info("scene features: {}", p.world->features().to_string());
   log::info("built the BVH over {} triangles in {:.0f} ms ({:.1f} MB)", p.world->accel().triangle_count(),
             1e3 * seconds_since(t0), p.world->accel().memory_bytes() / 1e6);
+  if (first && p.world->lights().empty())
+    log::warn("{}: the scene has no lights (the image will be black); light it with --env R,G,B", args.scene);
 }
 
 }  // namespace
 
 bool pose_scene(PreparedScene& p, const SceneArgs& args, double seconds) {
-  if (!p.gltf->pose(seconds)) return false;
+  if (!p.gltf->pose(seconds) && p.world) return false;
+  place_camera(p, args);
   build_world(p, args);  // the accel copies what moved
   return true;
 }
@@ -241,10 +249,11 @@ PreparedScene prepare_scene(const SceneArgs& args, bool keep_file) {
       scene.point_lights.size(), scene.spot_lights.size(), scene.directional_lights.size());
   if ((args.gltf.time || !args.gltf.animation.empty()) && !p.gltf->animated())
     log::info("{}: nothing is animated; --time and --animation change nothing", args.scene);
-  if (!keep_file) p.gltf->close();
-  build_world(p, args);
-  if (p.world->lights().empty())
-    log::warn("{}: the scene has no lights (the image will be black); light it with --env R,G,B", args.scene);
+  place_camera(p, args);
+  if (!keep_file) {
+    p.gltf->close();
+    build_world(p, args);
+  }
   return p;
 }
 

@@ -21,9 +21,11 @@ struct SceneArgs {
   bool energy_compensation = true;  // off: --no-energy-compensation (single-scattering microfacets)
 };
 
-// Bytes Prism budgets per pixel of the image (film, output copies) and per mesh instance (scene,
-// BVH, world), to refuse work that would not fit in --max-memory before allocating it.
-inline constexpr uint64_t kBytesPerPixel = 64, kBytesPerInstance = 512;
+// Bytes Prism budgets per pixel of the image and per mesh instance (scene, BVH, world), to refuse
+// work that would not fit in --max-memory before allocating it. A pixel: the film's exact sums
+// (152 bytes: colour, squares, replicate sums, counts), its output copies (about 40) and room for
+// a bidirectional render's splat sums; AOVs and spectral bins add to that and are not counted.
+inline constexpr uint64_t kBytesPerPixel = 256, kBytesPerInstance = 512;
 
 // Validators for positive counts up to INT_MAX (without a 309-digit range in the message) and
 // for seeds (0 to 2^64 − 1, no silent wrap of −1).
@@ -48,11 +50,12 @@ struct PreparedScene {
 };
 
 // Loads and prepares the scene, logging what it found; fails with a clear message on bad input.
-// Unless `keep_file` (to re-pose it with pose_scene), the parsed file is freed once loaded.
+// Unless `keep_file` (to re-pose it with pose_scene), the parsed file is freed once loaded. With
+// `keep_file` only the camera is placed: the first pose_scene builds the world, at its pose.
 PreparedScene prepare_scene(const SceneArgs& args, bool keep_file = false);
 
 // Poses the scene at `seconds` of its animations and rebuilds its world and camera, only when
-// something moved; returns whether it did.
+// something moved or the world was not built yet; returns whether it did.
 bool pose_scene(PreparedScene& prepared, const SceneArgs& args, double seconds);
 
 const char* integrator_name(IntegratorKind kind);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "base/checksum.h"
 #include "base/error.h"
 
 namespace prism {
@@ -57,6 +58,14 @@ float Camera::ray_density(const Ray& ray) const {
   if (!perspective()) return 1.f / pixel_area_;
   const float cos_theta = dot(ray.d, forward_);
   return cos_theta > 0.f ? 1.f / (pixel_area_ * cos_theta * cos_theta * cos_theta) : 0.f;
+}
+
+uint64_t Camera::hash() const {
+  Checksum sum;
+  const auto add = [&](const auto& v) { sum.add(&v, sizeof(v)); };
+  add(projection_), add(eye_), add(forward_), add(right_), add(up_), add(half_w_), add(half_h_), add(width_),
+      add(height_);
+  return sum.h;
 }
 
 CameraDesc framing_camera(const Bounds3f& bounds, float aspect) {

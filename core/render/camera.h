@@ -35,6 +35,9 @@ class Camera {
 
   int width() const { return width_; }
   int height() const { return height_; }
+  // FNV-1a of the projection, position, axes and extents: equal cameras, equal hashes (for the
+  // fingerprint of checkpoints and part files).
+  uint64_t hash() const;
 
  private:
   CameraDesc::Projection projection_;

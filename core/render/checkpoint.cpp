@@ -1,5 +1,7 @@
 #include "render/checkpoint.h"
 
+#include <unistd.h>
+
 #include <fstream>
 
 #include "base/atomic_file.h"
@@ -10,14 +12,33 @@ namespace prism {
 
 namespace {
 
-// Version 3: exact fixed-point film sums (with the second replicate's), the part of the render, a
-// checksum at the end.
-constexpr char kMagic[8] = {'P', 'R', 'I', 'S', 'M', 'C', 'K', '3'};
+// Version 4: exact fixed-point film sums (with the second replicate's) of the part's window only
+// (the crop, else the frame), the part of the render, a checksum at the end.
+constexpr char kMagic[8] = {'P', 'R', 'I', 'S', 'M', 'C', 'K', '4'};
 
 // The checksum covers every byte after the magic.
 
+// Bytes of a film's sums and counts per pixel, at least (without AOVs or spectral bins): Σ XYZ and
+// Σ XYZ² in 128-bit fixed point, a 32-bit sample count.
+constexpr uint64_t kMinBytesPerPixel = 6 * 16 + 4;
+
+// The pixels a state's film fields are stored for: the crop window, or the whole frame.
+PixelWindow stored_window(const RenderPart& part, int width, int height) {
+  return part.crop.empty() ? PixelWindow{0, 0, width, height} : part.crop;
+}
+
+// Calls visit(offset, count) for each row of `w` in a film field of `per_pixel` values per pixel
+// of a frame `width` pixels wide: the row's first value and its value count.
+template <typename Visit>
+void for_rows(const PixelWindow& w, int width, size_t per_pixel, Visit&& visit) {
+  for (int y = w.y0; y < w.y1; ++y) visit((size_t(y) * width + w.x0) * per_pixel, size_t(w.x1 - w.x0) * per_pixel);
+}
+
 struct Writer {
   std::ofstream out;
+  PixelWindow window;
+  int width;
+  size_t pixels;
   Checksum sum;
   void bytes(const void* p, uint64_t n) {
     out.write(static_cast<const char*>(p), std::streamsize(n));
@@ -31,10 +52,12 @@ struct Writer {
     value(uint64_t(s.size()));
     bytes(s.data(), s.size());
   }
+  // A film field, the window's pixels only.
   template <typename T>
   void operator()(const std::vector<T>& v) {
-    value(uint64_t(v.size()));
-    bytes(v.data(), v.size() * sizeof(T));
+    const size_t per_pixel = v.size() / pixels;
+    value(uint64_t(size_t(window.x1 - window.x0) * size_t(window.y1 - window.y0) * per_pixel));
+    for_rows(window, width, per_pixel, [&](size_t at, size_t n) { bytes(v.data() + at, n * sizeof(T)); });
   }
 };
 
@@ -42,6 +65,9 @@ struct Reader {
   std::ifstream in;
   const std::filesystem::path& file;
   uint64_t remaining;
+  PixelWindow window{};
+  int width = 0;
+  size_t pixels = 1;
   Checksum sum{};
   void bytes(void* p, uint64_t n) {
     if (n > remaining || !in.read(static_cast<char*>(p), std::streamsize(n)))
@@ -65,11 +91,14 @@ struct Reader {
     if (n > remaining / element) fail("{}: the checkpoint file is truncated or damaged", file.string());
     return n;
   }
-  // A film field: its stored size must be the size the film has.
+  // A film field, the window's pixels only (the film is zero elsewhere): its stored size must be
+  // the window's in the film's layout.
   template <typename T>
   void operator()(std::vector<T>& v) {
-    if (size(sizeof(T)) != v.size()) fail("{}: the checkpoint's film does not match the render", file.string());
-    bytes(v.data(), v.size() * sizeof(T));
+    const size_t per_pixel = v.size() / pixels;
+    if (size(sizeof(T)) != size_t(window.x1 - window.x0) * size_t(window.y1 - window.y0) * per_pixel)
+      fail("{}: the checkpoint's film does not match the render", file.string());
+    for_rows(window, width, per_pixel, [&](size_t at, size_t n) { bytes(v.data() + at, n * sizeof(T)); });
   }
 };
 
@@ -77,14 +106,18 @@ struct Reader {
 
 void save_checkpoint(const std::filesystem::path& file, const RenderState& state, const std::string& fingerprint) {
   write_atomically(file, [&](const std::filesystem::path& tmp) {
-    Writer w{std::ofstream(tmp, std::ios::binary), {}};
+    const Film& f = state.film;
+    Writer w{std::ofstream(tmp, std::ios::binary),
+             stored_window(state.part, f.width(), f.height()),
+             f.width(),
+             f.pixel_count(),
+             {}};
     w.out.write(kMagic, sizeof(kMagic));
     w.text(fingerprint);
     const RenderPart& part = state.part;
     for (int v :
          {part.sample_begin, part.sample_end, part.total, part.crop.x0, part.crop.y0, part.crop.x1, part.crop.y1})
       w.value(int32_t(v));
-    const Film& f = state.film;
     w.value(int32_t(f.width()));
     w.value(int32_t(f.height()));
     w.value(uint32_t(f.aovs()));
@@ -126,9 +159,22 @@ RenderState load_render_state(const std::filesystem::path& file) {
   const int width = r.value<int32_t>(), height = r.value<int32_t>();
   const uint32_t aovs = r.value<uint32_t>();
   const std::string bins = r.text();
-  if (width <= 0 || height <= 0 || uint64_t(width) * uint64_t(height) > r.remaining)
+  if (width <= 0 || height <= 0) fail("{}: the checkpoint file is truncated or damaged", file.string());
+  // The window's sums are stored (at least 100 bytes a pixel); the film in memory is the frame's.
+  const PixelWindow window = stored_window(part, width, height);
+  const PixelWindow& c = part.crop;
+  if (!c.empty() && (c.x0 < 0 || c.y0 < 0 || c.x1 > width || c.y1 > height))
+    fail("{}: the checkpoint's crop window lies outside its {}x{} frame (damaged?)", file.string(), width, height);
+  if (uint64_t(window.x1 - window.x0) * uint64_t(window.y1 - window.y0) > r.remaining / kMinBytesPerPixel)
     fail("{}: the checkpoint file is truncated or damaged", file.string());
+  const uint64_t memory = uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
+  if (uint64_t(width) * uint64_t(height) > memory / kMinBytesPerPixel)
+    fail("{}: the checkpoint's {}x{} frame needs more memory than this machine has (damaged?)", file.string(), width,
+         height);
   RenderState state{Film(width, height, aovs, bins.empty() ? SpectralBins{} : SpectralBins::parse(bins))};
+  r.window = window;
+  r.width = width;
+  r.pixels = state.film.pixel_count();
   state.fingerprint = fingerprint;
   state.part = part;
   state.passes = r.value<int32_t>();

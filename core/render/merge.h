@@ -11,14 +11,10 @@
 
 namespace prism {
 
-struct NamedState {
-  std::filesystem::path file;
-  RenderState state;
-};
-
-// Fails, naming the part files and what is wrong, unless the parts were rendered with the same
-// fingerprint (scene, options, seed), size and TOTAL, and their (crop, range) pairs cover every
-// pixel's samples [0, TOTAL) exactly once.
-RenderState merge_parts(const std::vector<NamedState>& parts);
+// Loads the part files one at a time (memory: the merged film and one part) and merges them;
+// fails, naming the files and what is wrong, unless the parts were rendered with the same
+// fingerprint (scene, options, seed; animation time: parts of different frames never merge), size
+// and TOTAL, and their (crop, range) pairs cover every pixel's samples [0, TOTAL) exactly once.
+RenderState merge_parts(const std::vector<std::filesystem::path>& files);
 
 }  // namespace prism

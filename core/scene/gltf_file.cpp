@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "base/checksum.h"
 #include "base/error.h"
 #include "base/log.h"
 #include "scene/gltf_compression.h"
@@ -23,6 +24,7 @@ struct UriPolicy {
   std::string base;  // the base folder as handed to tinygltf
   bool allow_external = false;
   std::string problem;  // the first file refused or missing, for the error message
+  Checksum content;     // of every file read (read_gltf_file)
 };
 
 bool inside(const fs::path& root, const fs::path& p) {
@@ -78,7 +80,11 @@ bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const st
   const fs::path file = resolve(policy, path);
   if (file.empty()) return false;
   std::string error;
-  if (read_bytes(file, *out, error)) return true;
+  if (read_bytes(file, *out, error)) {
+    policy.content.add(path.substr(std::min(path.size(), policy.base.size())));  // "/URI"
+    policy.content.add(out->data(), out->size());
+    return true;
+  }
   if (policy.problem.empty()) policy.problem = fmt::format("cannot read {}: {}", file.string(), error);
   if (err) *err += policy.problem;
   return false;
@@ -177,7 +183,7 @@ int json_depth(const char* text, size_t size) {
 }
 
 std::string read_gltf_file(tinygltf::TinyGLTF& reader, tinygltf::Model& model, const fs::path& file,
-                           bool allow_external_paths) {
+                           bool allow_external_paths, uint64_t& content_hash) {
   const std::string name = file.string();
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) fail("{}: no such file", name);
@@ -191,6 +197,7 @@ std::string read_gltf_file(tinygltf::TinyGLTF& reader, tinygltf::Model& model, c
   std::vector<unsigned char> bytes;
   std::string error, warn;
   if (!read_bytes(file, bytes, error)) fail("{}: cannot read: {}", name, error);
+  policy.content.add(bytes.data(), bytes.size());
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   size_t bin_length = 0;
   if (binary) {
@@ -207,6 +214,7 @@ std::string read_gltf_file(tinygltf::TinyGLTF& reader, tinygltf::Model& model, c
              : reader.LoadASCIIFromString(&model, &error, &warn, reinterpret_cast<const char*>(bytes.data()),
                                           unsigned(bytes.size()), policy.base);
   if (!policy.problem.empty()) fail("{}: {}", name, policy.problem);
+  content_hash = policy.content.h;
   // A required extension the parser cannot follow (its data elsewhere) is the real cause.
   if (!ok)
     if (const std::string ext = unsupported_required_extension(gltf_json(bytes, binary)); !ext.empty())

@@ -158,7 +158,7 @@ struct GltfScene::State {
   State(const std::filesystem::path& file, const GltfOptions& options) : model(std::make_unique<tinygltf::Model>()) {
     tinygltf::TinyGLTF reader;
     reader.SetImageLoader(keep_encoded_image, nullptr);
-    const std::string errors = read_gltf_file(reader, *model, file, options.allow_external_paths);
+    const std::string errors = read_gltf_file(reader, *model, file, options.allow_external_paths, scene.source_hash);
     if (errors.empty()) {  // else the loader names them (after any required extension Prism lacks)
       decode_meshopt(*model, file.string());
       decode_draco(*model, file.string());

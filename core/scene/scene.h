@@ -83,6 +83,7 @@ struct EnvironmentMapDesc {
 
 struct Scene {
   std::filesystem::path source;
+  uint64_t source_hash = 0;  // FNV-1a of the source file and every file its URIs name (gltf_file.h)
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;
   std::vector<Material> materials;

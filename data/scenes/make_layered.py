@@ -5,7 +5,12 @@
                     closed surface of index 1, so light crosses a single film at each wall),
                     their thickness 250 to 850 nm, and an oil film (n 1.45, 380 nm) on dark water;
   carpaint.gltf     a curved red car-paint panel under a clear coat (KHR_materials_clearcoat,
-                    factor 1, roughness 0.04) beside the same paint without it.
+                    factor 1, roughness 0.04) beside the same paint without it;
+  lobes_plain.gltf  the cost benchmark's reference: four spheres of plain metallic-roughness
+                    materials (metal, plastic, half-metal, half-transmissive);
+  lobes_all.gltf    the same spheres with every layer extension at once (clear coat, sheen,
+                    specular colour, iridescence, anisotropy, diffuse transmission): the time per
+                    sample of the two is the layered lobes' cost (`prism bench features`).
 
 Both are lit by a long soft box overhead and a dimmer one behind the camera.
 Run:  python3 data/scenes/make_layered.py
@@ -14,7 +19,8 @@ Standard library only (helpers in gltf_builder.py).
 import math
 import os
 
-from gltf_builder import build_gltf, emitter, lambert, look_at_camera, quad, uv_sphere, write_gltf
+from gltf_builder import (build_gltf, emitter, lambert, look_at_camera, quad, uv_sphere, with_longitude_tangents,
+                          write_gltf)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -75,6 +81,43 @@ def room():
             ("backdrop", quad((-4, 0, -3), (4, 0, -3), (4, 4, -3), (-4, 4, -3)), BACKDROP)]
 
 
+def plain_material(name, color, metallic, roughness, transmission=0.0):
+    m = {"name": name, "pbrMetallicRoughness": {"baseColorFactor": list(color) + [1], "metallicFactor": metallic,
+                                                "roughnessFactor": roughness}}
+    if transmission:
+        m["extensions"] = {"KHR_materials_transmission": {"transmissionFactor": transmission}}
+    return m
+
+
+def all_lobes(material):
+    """The material with every layer extension Prism has (each at a middling value)."""
+    m = dict(material, name=material["name"] + "_layered")
+    m["extensions"] = dict(m.get("extensions", {}),
+                           KHR_materials_clearcoat={"clearcoatFactor": 0.8, "clearcoatRoughnessFactor": 0.2},
+                           KHR_materials_sheen={"sheenColorFactor": [0.5, 0.5, 1.0], "sheenRoughnessFactor": 0.5},
+                           KHR_materials_specular={"specularColorFactor": [1.5, 1.0, 0.5]},
+                           KHR_materials_iridescence={"iridescenceFactor": 0.5, "iridescenceIor": 1.6,
+                                                      "iridescenceThicknessMaximum": 250},
+                           KHR_materials_anisotropy={"anisotropyStrength": 0.5},
+                           KHR_materials_diffuse_transmission={"diffuseTransmissionFactor": 0.3})
+    return m
+
+
+def lobe_benchmark(layered):
+    """Four spheres in a row filling a 3:1 frame: metal, plastic, half-metal, half-transmissive plastic."""
+    materials = [plain_material("metal", (0.9, 0.6, 0.3), 1.0, 0.4), plain_material("plastic", (0.2, 0.4, 0.8), 0.0, 0.3),
+                 plain_material("half_metal", (0.8, 0.8, 0.8), 0.5, 0.5),
+                 plain_material("half_transmissive", (0.9, 0.9, 0.9), 0.0, 0.3, transmission=0.5)]
+    objects = room() + lights()
+    for i, m in enumerate(materials):
+        sphere = with_longitude_tangents(uv_sphere((-0.96 + 0.64 * i, 0.3, 0.0), 0.3, 48))
+        objects.append(("sphere_" + m["name"], sphere, all_lobes(m) if layered else m))
+    camera = dict(look_at_camera("camera", (0.0, 0.35, 2.5), (0.0, 0.3, 0.0), 20.4), aspectRatio=3.0)
+    name = "lobes_all" if layered else "lobes_plain"
+    write_gltf(os.path.join(HERE, name + ".gltf"),
+               build_gltf(objects, camera, "Prism make_layered.py", "Prism project", name))
+
+
 def main():
     bubbles = [(-1.05, 250), (-0.35, 450), (0.35, 650), (1.05, 850)]
     objects = room() + lights()
@@ -91,6 +134,8 @@ def main():
     write_gltf(os.path.join(HERE, "carpaint.gltf"),
                build_gltf(objects, look_at_camera("camera", (0.0, 1.2, 3.4), (0.0, 0.8, 0.0), 36.0),
                           "Prism make_layered.py", "Prism project", "carpaint"))
+    lobe_benchmark(False)
+    lobe_benchmark(True)
 
 
 if __name__ == "__main__":

@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "render/image_output.h"
+#include "support/gltf_builder.h"
 #include "support/test_scenes.h"
 
 using namespace prism;
@@ -24,10 +25,12 @@ std::string render_args(int threads, uint64_t seed = 5) {
                      seed, threads);
 }
 
-// Every channel of an EXR image, as bytes.
-std::vector<char> pixels(const std::filesystem::path& exr) {
+// The channels of an EXR image (by default all those render_args writes), as bytes.
+std::vector<char> pixels(const std::filesystem::path& exr,
+                         const std::vector<const char*>& channels = {"R", "G", "B", "variance.Y", "albedo.R",
+                                                                     "albedo.G", "albedo.B"}) {
   std::vector<char> bytes;
-  for (const char* name : {"R", "G", "B", "variance.Y", "albedo.R", "albedo.G", "albedo.B"}) {
+  for (const char* name : channels) {
     const std::vector<float> c = read_exr_channel(exr, name);
     const char* p = reinterpret_cast<const char*>(c.data());
     bytes.insert(bytes.end(), p, p + c.size() * sizeof(float));
@@ -111,4 +114,120 @@ TEST_CASE("merge: refuses parts that do not make the render, and writes nothing"
   refuses(a + scene, "another scene or other options");
   refuses(a + " \"" + corrupt.string() + "\"", "damaged");
   CHECK(test::run_prism("merge" + a + b + " -o \"" + out.string() + "\"") == 0);
+}
+
+TEST_CASE("merge: a tile's part file holds the sums of its window only", "[cli][merge]") {
+  const auto dir = test::temp_dir("merge_tile_size");
+  const std::filesystem::path frame = dir / "frame.prism-part", tile = dir / "tile.prism-part";
+  REQUIRE(test::run_prism(render_args(2) + " --samples 0:1 -o \"" + frame.string() + "\"") == 0);
+  REQUIRE(test::run_prism(render_args(2) + " --samples 0:1 --crop 8,8,16,16 -o \"" + tile.string() + "\"") == 0);
+  // 64 of the frame's 1024 pixels; the header is small beside either.
+  CHECK(std::filesystem::file_size(tile) * 12 < std::filesystem::file_size(frame));
+}
+
+namespace {
+
+// `prism farm slurm --dry-run` run without Slurm: its scripts, printed as
+// "# DIR/parts.sbatch\n<script>\n# DIR/merge.sbatch (...)\n<script>", written to DIR.
+struct FarmScripts {
+  std::filesystem::path parts, merge;
+};
+FarmScripts dry_run_scripts(const std::string& farm, const std::filesystem::path& dir) {
+  std::string out;
+  REQUIRE(test::run_prism(farm + " --dry-run", nullptr, &out) == 0);
+  const size_t merge_at = out.find("# " + dir.string() + "/merge.sbatch");
+  REQUIRE(merge_at != std::string::npos);
+  const auto write = [&](const char* name, size_t from, size_t to) {
+    const size_t begin = out.find('\n', from) + 1;
+    std::ofstream(dir / name) << out.substr(begin, to - begin);
+    return dir / name;
+  };
+  std::filesystem::create_directories(dir);
+  return {merge_at == 0 ? std::filesystem::path() : write("parts.sbatch", 0, merge_at),
+          write("merge.sbatch", merge_at, out.size())};
+}
+
+}  // namespace
+
+TEST_CASE("merge: an animation's frames split into parts by the farm's scripts give `prism render --frames`",
+          "[cli][merge]") {
+  const auto dir = test::temp_dir("merge_frames");
+  const std::string scene = test::write_animated_triangle(dir).string();
+  // The morph-target triangle turning about +y (animation "linear"): frames 0 and 1 at 2 fps.
+  const std::string options = "--width 16 --height 16 --env 1,1,1 --animation linear --seed 3";
+  const std::string animation = "--frames 0:1 --fps 2 --spp 7";
+  for (int threads : {1, 2}) {
+    INFO(threads << " threads");
+    const std::filesystem::path farm_dir = dir / fmt::format("farm{}", threads);
+    const std::string farm = fmt::format("farm slurm \"{}\" {} --parts 3 {} --threads {} --out \"{}\"", scene,
+                                         animation, options, threads, farm_dir.string());
+    const FarmScripts scripts = dry_run_scripts(farm, farm_dir);
+    REQUIRE(!scripts.parts.empty());
+    for (int task = 0; task < 6; ++task)
+      REQUIRE(std::system(fmt::format("SLURM_ARRAY_TASK_ID={} sh \"{}\"", task, scripts.parts.string()).c_str()) == 0);
+    for (const char* part : {"frame-0000.part-0", "frame-0000.part-2", "frame-0001.part-0", "frame-0001.part-2"})
+      CHECK(std::filesystem::exists(farm_dir / (part + std::string(".prism-part"))));
+    REQUIRE(std::system(fmt::format("sh \"{}\" >/dev/null", scripts.merge.string()).c_str()) == 0);
+
+    const std::string single = (dir / fmt::format("single{}.####.exr", threads)).string();
+    REQUIRE(test::run_prism(fmt::format("render \"{}\" {} {} --threads {} -q -o \"{}\"", scene, animation, options,
+                                        threads, single)) == 0);
+    for (const char* frame : {"0000", "0001"}) {
+      INFO("frame " << frame);
+      CHECK(pixels(farm_dir / fmt::format("image.{}.exr", frame), {"R", "G", "B"}) ==
+            pixels(dir / fmt::format("single{}.{}.exr", threads, frame), {"R", "G", "B"}));
+    }
+    CHECK(pixels(farm_dir / "image.0000.exr", {"R", "G", "B"}) != pixels(farm_dir / "image.0001.exr", {"R", "G", "B"}));
+
+    INFO("resubmission renders only the missing parts");
+    std::filesystem::remove(farm_dir / "frame-0001.part-1.prism-part");
+    std::string out;
+    REQUIRE(test::run_prism(farm + " --dry-run", nullptr, &out) == 0);
+    CHECK_THAT(out, Catch::Contains("#SBATCH --array=4\n"));
+  }
+  std::string scripts;
+  REQUIRE(test::run_prism(
+              fmt::format("farm slurm \"{}\" {} --out \"{}\" --dry-run", scene, animation, (dir / "default").string()),
+              nullptr, &scripts) == 0);
+  CHECK_THAT(scripts, Catch::Contains("#SBATCH --array=0-1\n"));  // one part per frame by default
+
+  INFO("parts of different frames do not merge");
+  const auto part = [&](const char* frame, int part) {
+    return fmt::format(" \"{}\"", (dir / fmt::format("farm1/frame-{}.part-{}.prism-part", frame, part)).string());
+  };
+  std::string err;
+  const std::filesystem::path out = dir / "mixed.exr";
+  CHECK(test::run_prism("merge" + part("0000", 0) + part("0001", 0) + part("0000", 2) + " -o \"" + out.string() + "\"",
+                        &err) == 1);
+  CHECK_THAT(err, Catch::Contains("frame-0001.part-0.prism-part: a part of the frame at 0.5 s") &&
+                      Catch::Contains("parts of different frames never merge"));
+  CHECK_FALSE(std::filesystem::exists(out));
+}
+
+TEST_CASE("merge: parts name the scene by its file name and content, not by its path", "[cli][merge]") {
+  const auto dir = test::temp_dir("merge_relocated");
+  // tri.gltf with its vertices in tri.bin, in three folders: b a copy of a, c with one vertex moved.
+  const auto write = [&](const char* folder, float top) {
+    std::filesystem::create_directories(dir / folder);
+    std::ofstream(dir / folder / "tri.gltf") << R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 2, 0]}],
+  "bufferViews": [{"buffer": 0, "byteLength": 36}], "buffers": [{"uri": "tri.bin", "byteLength": 36}]})";
+    const float vertices[9] = {0, 0, 0, 1, 0, 0, 0, top, 0};
+    std::ofstream(dir / folder / "tri.bin", std::ios::binary)
+        .write(reinterpret_cast<const char*>(vertices), sizeof(vertices));
+  };
+  write("a", 1), write("b", 1), write("c", 2);
+  const auto part = [&](const char* folder, const char* samples) {
+    const std::filesystem::path file = dir / fmt::format("{}{}.prism-part", folder, samples[0]);
+    REQUIRE(test::run_prism(fmt::format("render \"{}\" --width 16 --height 16 --env 1,1,1 --spp 7 --samples {} -q "
+                                        "-o \"{}\"",
+                                        (dir / folder / "tri.gltf").string(), samples, file.string())) == 0);
+    return " \"" + file.string() + "\"";
+  };
+  const std::filesystem::path out = dir / "out.exr";
+  CHECK(test::run_prism("merge" + part("a", "0:3") + part("b", "3:7") + " -o \"" + out.string() + "\"") == 0);
+  std::string err;
+  CHECK(test::run_prism("merge" + part("a", "0:3") + part("c", "3:7") + " -o \"" + out.string() + "\"", &err) == 1);
+  CHECK_THAT(err, Catch::Contains("another scene or other options") && Catch::Contains("scene-hash="));
 }

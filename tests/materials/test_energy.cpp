@@ -101,9 +101,16 @@ std::vector<Case> layered_cases(float roughness, bool compensated = true) {
                  return of(m);
                },
                false, 1, sharp});
-  // A film of higher index than the base (n_f² > η) over a white diffuse reflects up to 0.9% more
-  // than it receives at 87° (the bound in make_bsdf holds at normal incidence, not at grazing);
-  // the extension's default film (1.3) is below the base's index and stays within 1.
+  // A film of higher index than the base (n_f² > η), whose reflectance near grazing rises above
+  // that of any single interface: coupled as the quarter-wave interface alone, the white diffuse
+  // under it reflected 0.9% more than it received at 87°.
+  c.push_back({"thin film n 1.8, 450 nm, over white plastic" + r,
+               [=] {
+                 PbrMaterial m = plastic({1, 1, 1}, roughness);
+                 m.iridescence = iridescence(1, 1.8f, 450);
+                 return of(m);
+               },
+               false, 1, sharp});
   c.push_back({"thin film n 1.3, 450 nm, over white plastic" + r,
                [=] {
                  PbrMaterial m = plastic({1, 1, 1}, roughness);

@@ -47,13 +47,13 @@ TEST_CASE("thin film: Airy's sum equals the transfer-matrix reference over diele
           const C bases[] = {C(1.5), C(1.0), C(1.33), C(evaluate(au.n, float(lambda)), evaluate(au.k, float(lambda)))};
           for (const C nb : bases) {
             INFO("λ " << lambda << " d " << d << " cos " << cos_a << " n_film " << nf << " base " << nb);
-            CHECK(thin_film_reflectance(cos_a, lambda, d, 1.0, nf, nb) ==
+            CHECK(thin_film_reflectance(cos_a, lambda, d, 1.0, nf, std::complex<float>(nb)) ==
                   Approx(tmm(cos_a, lambda, d, 1.0, nf, nb)).margin(1e-4));
           }
           // Seen from inside glass (n 1.5) through the film into air: total internal reflection
           // past the critical angle, evanescent in the film.
           INFO("from glass: λ " << lambda << " d " << d << " cos " << cos_a << " n_film " << nf);
-          CHECK(thin_film_reflectance(cos_a, lambda, d, 1.5, nf, C(1.0)) ==
+          CHECK(thin_film_reflectance(cos_a, lambda, d, 1.5, nf, 1.f) ==
                 Approx(tmm(cos_a, lambda, d, 1.5, nf, C(1.0))).margin(1e-4));
         }
 }
@@ -63,14 +63,14 @@ TEST_CASE("thin film: no thickness, or the ambient's index, leaves the bare base
   for (float lambda : {400.f, 550.f, 700.f})
     for (float cos_a : {1.f, 0.6f, 0.1f}) {
       const float n = evaluate(cu.n, lambda), k = evaluate(cu.k, lambda);
-      CHECK(thin_film_reflectance(cos_a, lambda, 0, 1, 1.6, C(n, k)) ==
+      CHECK(thin_film_reflectance(cos_a, lambda, 0, 1, 1.6, {n, k}) ==
             Approx(fresnel_conductor(cos_a, n, k)).margin(1e-6));
-      CHECK(thin_film_reflectance(cos_a, lambda, 0, 1, 1.6, C(1.5)) ==
+      CHECK(thin_film_reflectance(cos_a, lambda, 0, 1, 1.6, 1.5f) ==
             Approx(fresnel_dielectric(cos_a, 1.5f)).margin(1e-6));
       for (double d : {100.0, 750.0}) {
-        CHECK(thin_film_reflectance(cos_a, lambda, d, 1, 1, C(n, k)) ==
+        CHECK(thin_film_reflectance(cos_a, lambda, d, 1, 1, {n, k}) ==
               Approx(fresnel_conductor(cos_a, n, k)).margin(1e-6));
-        CHECK(thin_film_reflectance(cos_a, lambda, d, 1, 1, C(1.5)) ==
+        CHECK(thin_film_reflectance(cos_a, lambda, d, 1, 1, 1.5f) ==
               Approx(fresnel_dielectric(cos_a, 1.5f)).margin(1e-6));
       }
     }
@@ -78,7 +78,7 @@ TEST_CASE("thin film: no thickness, or the ambient's index, leaves the bare base
 
 TEST_CASE("thin film: a quarter-wave film of index √n on glass is an anti-reflection coating") {
   const double n = 1.5, nf = std::sqrt(n), lambda = 550, d = lambda / (4 * nf);
-  CHECK(thin_film_reflectance(1, lambda, d, 1, nf, C(n)) == Approx(0).margin(1e-12));
+  CHECK(thin_film_reflectance(1, lambda, d, 1, nf, float(n)) == Approx(0).margin(1e-6));
   // Half-wave: absent at its design wavelength.
-  CHECK(thin_film_reflectance(1, lambda, 2 * d, 1, nf, C(n)) == Approx(0.04).margin(1e-9));
+  CHECK(thin_film_reflectance(1, lambda, 2 * d, 1, nf, float(n)) == Approx(0.04).margin(1e-6));
 }

@@ -144,34 +144,6 @@ TEST_CASE("malformed animations, morph targets and skins fail with a message nam
 
 namespace {
 
-// One triangle on a node animated by one sampler of each interpolation, keys at t = 0 and 2.
-std::filesystem::path animated_file() {
-  test::GltfBuilder b;
-  const int pos = b.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
-  const int target = b.floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
-  const int times = b.floats({0, 2}, "SCALAR");
-  const int step = b.floats({1, 2, 3, 5, 6, 7}, "VEC3");
-  const int linear_rotation = b.floats({0, 0, 0, 1, 0, 0.70710678f, 0, 0.70710678f}, "VEC4");
-  // CUBICSPLINE: in-tangent, value, out-tangent per key.
-  const int cubic = b.floats({9, 9, 9, 0, 0, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 9, 9, 9}, "VEC3");
-  const int weights = b.floats({0, 1}, "SCALAR");
-  return write("animated",
-               b.json(fmt::format(R"(
-  "scenes": [{{"nodes": [0]}}],
-  "nodes": [{{"mesh": 0}}],
-  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": {}}}, "targets": [{{"POSITION": {}}}]}}]}}],
-  "animations": [
-    {{"name": "step", "samplers": [{{"input": {}, "output": {}, "interpolation": "STEP"}}],
-      "channels": [{{"sampler": 0, "target": {{"node": 0, "path": "translation"}}}}]}},
-    {{"name": "linear", "samplers": [{{"input": {}, "output": {}}}, {{"input": {}, "output": {}}}],
-      "channels": [{{"sampler": 0, "target": {{"node": 0, "path": "rotation"}}}},
-                   {{"sampler": 1, "target": {{"node": 0, "path": "weights"}}}}]}},
-    {{"name": "cubic", "samplers": [{{"input": {}, "output": {}, "interpolation": "CUBICSPLINE"}}],
-      "channels": [{{"sampler": 0, "target": {{"node": 0, "path": "scale"}}}}]}}
-  ])",
-                                  pos, target, times, step, times, linear_rotation, times, weights, times, cubic)));
-}
-
 Scene at(const std::filesystem::path& file, double time, const std::string& animation) {
   GltfOptions options;
   options.time = time;
@@ -182,7 +154,7 @@ Scene at(const std::filesystem::path& file, double time, const std::string& anim
 }  // namespace
 
 TEST_CASE("animation channels at a time between keys: STEP, LINEAR with slerp, CUBICSPLINE") {
-  const auto file = animated_file();
+  const auto file = test::write_animated_triangle(test::temp_dir("gltf_animation_animated"));
   // STEP holds the first key until the second.
   check_near(world_vertex(at(file, 1.5, "step"), 0, 0), {1, 2, 3});
   check_near(world_vertex(at(file, 2, "step"), 0, 0), {5, 6, 7});
@@ -213,7 +185,7 @@ TEST_CASE("a loaded file re-poses for each frame, rewriting only what moved") {
   GltfOptions options;
   options.time = 0;
   options.animation = "linear";
-  GltfScene gltf(animated_file(), options);
+  GltfScene gltf(test::write_animated_triangle(test::temp_dir("gltf_animation_animated")), options);
   const size_t meshes = gltf.scene().meshes.size();
   const Vec3f* positions = gltf.scene().meshes[0].positions.data();
   CHECK(gltf.animated());
@@ -228,7 +200,7 @@ TEST_CASE("a loaded file re-poses for each frame, rewriting only what moved") {
 }
 
 TEST_CASE("prism render --frames renders an animation's frames to a numbered sequence") {
-  const auto file = animated_file();
+  const auto file = test::write_animated_triangle(test::temp_dir("gltf_animation_animated"));
   const auto dir = test::temp_dir("gltf_frames");
   const std::string common = "render \"" + file.string() + "\" --spp 1 --width 8 --height 8 --env 1,1,1 -q";
   std::string err;

@@ -1,6 +1,7 @@
 // `prism farm slurm` on a real Slurm cluster: tools/slurm/local_cluster.sh starts a single-node
 // cluster on this machine (as root, as CI runs; the test skips where it cannot), a 4-part array
-// render plus its merge job give the single render's image bit for bit, and after one array
+// render plus its merge job give the single render's image bit for bit, so do the 2 parts of
+// each of an animation's 2 frames give `prism render --frames`, and after one array
 // task is cancelled mid-run, submitting again renders only the missing part and completes the
 // image. CTest label `slurm` (run by .ci/run after `make test`).
 
@@ -14,6 +15,7 @@
 #include <thread>
 
 #include "render/image_output.h"
+#include "support/gltf_builder.h"
 #include "support/test_scenes.h"
 
 using namespace prism;
@@ -63,8 +65,10 @@ bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
 
 }  // namespace
 
-TEST_CASE("slurm: a 4-part array render and its merge job give the single render, and resubmission completes it",
-          "[slurm]") {
+TEST_CASE(
+    "slurm: array renders of a still and of 2 animation frames merge to the single render, and resubmission "
+    "completes a cancelled one",
+    "[slurm]") {
   if (geteuid() != 0) {
     WARN("SKIPPED: starting a local Slurm cluster needs root (CI runs as root)");
     return;
@@ -95,6 +99,26 @@ TEST_CASE("slurm: a 4-part array render and its merge job give the single render
     wait_for_queue();
     REQUIRE(std::filesystem::exists(dir / "whole/image.exr"));
     CHECK(same_bits(rgb(dir / "whole/image.exr"), rgb(dir / "whole.exr")));
+  }
+  {
+    INFO("an animation: 2 frames of 2 parts each, one array job, the merge job writes each frame");
+    const std::string scene = test::write_animated_triangle(dir).string();
+    const std::string options = "--width 16 --height 16 --env 1,1,1 --animation linear --spp 8 --seed 3 --threads 1";
+    REQUIRE(test::run_prism(fmt::format("render \"{}\" {} --frames 0:1 --fps 2 -q -o \"{}\"", scene, options,
+                                        (dir / "anim.####.exr").string())) == 0);
+    const auto [out, status] =
+        shell(fmt::format("\"{}\" farm slurm \"{}\" --frames 0:1 --fps 2 --parts 2 {} --out \"{}\"", PRISM_EXECUTABLE,
+                          scene, options, (dir / "anim").string()));
+    INFO(out);
+    REQUIRE(status == 0);
+    CHECK_THAT(out, Catch::Contains("array tasks 0-3 of 4"));
+    wait_for_queue();
+    for (const char* frame : {"0000", "0001"}) {
+      INFO("frame " << frame);
+      const std::filesystem::path image = dir / fmt::format("anim/image.{}.exr", frame);
+      REQUIRE(std::filesystem::exists(image));
+      CHECK(same_bits(rgb(image), rgb(dir / fmt::format("anim.{}.exr", frame))));
+    }
   }
   {
     INFO("one array task cancelled mid-run, then submitted again");

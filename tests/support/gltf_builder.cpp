@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cstring>
+#include <fstream>
 
 namespace prism::test {
 
@@ -60,6 +61,35 @@ std::string GltfBuilder::json(const std::string& body) const {
 }}
 )",
                      bytes_.size(), base64(bytes_), join(views_), join(accessors_), body);
+}
+
+std::filesystem::path write_animated_triangle(const std::filesystem::path& dir) {
+  GltfBuilder b;
+  const int pos = b.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+  const int target = b.floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
+  const int times = b.floats({0, 2}, "SCALAR");
+  const int step = b.floats({1, 2, 3, 5, 6, 7}, "VEC3");
+  const int linear_rotation = b.floats({0, 0, 0, 1, 0, 0.70710678f, 0, 0.70710678f}, "VEC4");
+  // CUBICSPLINE: in-tangent, value, out-tangent per key.
+  const int cubic = b.floats({9, 9, 9, 0, 0, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 9, 9, 9}, "VEC3");
+  const int weights = b.floats({0, 1}, "SCALAR");
+  const std::filesystem::path file = dir / "animated.gltf";
+  std::ofstream(file) << b.json(fmt::format(R"(
+  "scenes": [{{"nodes": [0]}}],
+  "nodes": [{{"mesh": 0}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": {}}}, "targets": [{{"POSITION": {}}}]}}]}}],
+  "animations": [
+    {{"name": "step", "samplers": [{{"input": {}, "output": {}, "interpolation": "STEP"}}],
+      "channels": [{{"sampler": 0, "target": {{"node": 0, "path": "translation"}}}}]}},
+    {{"name": "linear", "samplers": [{{"input": {}, "output": {}}}, {{"input": {}, "output": {}}}],
+      "channels": [{{"sampler": 0, "target": {{"node": 0, "path": "rotation"}}}},
+                   {{"sampler": 1, "target": {{"node": 0, "path": "weights"}}}}]}},
+    {{"name": "cubic", "samplers": [{{"input": {}, "output": {}, "interpolation": "CUBICSPLINE"}}],
+      "channels": [{{"sampler": 0, "target": {{"node": 0, "path": "scale"}}}}]}}
+  ])",
+                                            pos, target, times, step, times, linear_rotation, times, weights, times,
+                                            cubic));
+  return file;
 }
 
 }  // namespace prism::test

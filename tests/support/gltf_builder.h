@@ -3,6 +3,7 @@
 // bufferView per accessor, and the rest of the JSON written by the test.
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -26,5 +27,11 @@ struct GltfBuilder {
   std::vector<unsigned char> bytes_;
   std::vector<std::string> views_, accessors_;
 };
+
+// DIR/animated.gltf: one triangle (0,0,0), (1,0,0), (0,1,0) with a morph target lifting it by +z, on
+// a node animated by one sampler of each interpolation, keys at t = 0 and 2: "step" (STEP
+// translation (1,2,3) -> (5,6,7)), "linear" (rotation 0 -> 90 degrees about +y, morph weight
+// 0 -> 1), "cubic" (CUBICSPLINE scale (0,0,0) -> (7,8,9), tangents (1,2,3) and (4,5,6)).
+std::filesystem::path write_animated_triangle(const std::filesystem::path& dir);
 
 }  // namespace prism::test

@@ -1,0 +1,205 @@
+#!/usr/bin/env python3
+"""Why LightsPunctualLamp differs from Cycles, on the smallest scenes that show it (issue 12):
+a point light 5 cm behind a rough pane with glTF's thin-walled transmission (the lamp's shade: an
+open sheet, roughness 0.6, transmission 1, no KHR_materials_volume), and 5 cm in front of a
+Lambertian plane, each seen straight on by an orthographic camera. Renders both with Prism
+(--no-energy-compensation: the single-scattering lobes Cycles 3.4 has) and Blender 3.4 Cycles (the
+harness in ../shared/tools/cycles, COMPAT units), and compares them with answers computed here:
+
+  plane       ρ I cos θ / (π d²);
+  thin wall   f_t(wo, wi) I |cos θ_i| / d², f_t the GGX reflection lobe mirrored through the sheet
+              (glTF's thin wall; T = 1 − 2R/(1 + R) for its two faces, or 1 − R for one);
+  solid       Walter et al. 2007's rough refraction into index 1.5, the light taken to be inside
+              the glass, with and without the 1/η² that radiance takes on leaving it.
+
+    tools/lamp_pane.py [--spp 256] [--size 128] [--out out/lamp_pane]
+
+Skips (exit 0) without ../shared or Blender. tests/render/test_punctual_lights.cpp checks Prism
+against the same thin-wall answer in every test run.
+"""
+import argparse
+import base64
+import json
+import os
+import shutil
+import struct
+import subprocess
+import sys
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DEPTH, HALF, INTENSITY, ETA = 0.05, 0.1, 1.0, 1.5  # light 5 cm from a 20 cm square, 1 cd, index 1.5
+
+
+def scene(kind, roughness):
+    """A 2·HALF square at z = 0 facing +z, the point light DEPTH behind it (pane) or in front (plane)."""
+    p = [(-HALF, -HALF, 0), (HALF, -HALF, 0), (HALF, HALF, 0), (-HALF, HALF, 0)]
+    blob = struct.pack("<12f", *[c for v in p for c in v]) + struct.pack("<12f", *[0, 0, 1] * 4) + \
+        struct.pack("<6I", 0, 1, 2, 0, 2, 3)
+    pbr = {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0, "roughnessFactor": roughness}
+    if kind == "pane":
+        material = {"name": "pane", "pbrMetallicRoughness": pbr, "doubleSided": True,
+                    "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0}}}
+    else:
+        material = {"name": "plane", "pbrMetallicRoughness": pbr,
+                    "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}}
+    light_z = -DEPTH if kind == "pane" else DEPTH
+    return {
+        "asset": {"version": "2.0", "generator": "tools/lamp_pane.py"}, "scene": 0, "scenes": [{"nodes": [0, 1, 2]}],
+        "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 0, 1]},
+                  {"translation": [0, 0, light_z], "extensions": {"KHR_lights_punctual": {"light": 0}}}],
+        "cameras": [{"type": "orthographic", "orthographic": {"xmag": HALF, "ymag": HALF, "znear": 0.01, "zfar": 10}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2, "material": 0}]}],
+        "materials": [material],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                       "min": [-HALF, -HALF, 0], "max": [HALF, HALF, 0]},
+                      {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+                      {"bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR"}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+                        {"buffer": 0, "byteOffset": 96, "byteLength": 24}],
+        "buffers": [{"byteLength": len(blob),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}],
+        "extensionsUsed": ["KHR_lights_punctual"] + list(material["extensions"]),
+        "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": INTENSITY}]}}}
+
+
+# ----------------------------------------------------------------------------- the answers
+def directions(np, n, sub=8):
+    """Per sub-pixel: the unit direction to the light (pane's frame, normal +z) and d²."""
+    t = (np.arange(n * sub) + 0.5) / (n * sub) * 2 * HALF - HALF
+    x, y = np.meshgrid(t, -t)  # image row 0 is +y
+    def at(z):
+        d2 = x * x + y * y + z * z
+        r = np.sqrt(d2)
+        return np.stack([-x / r, -y / r, np.full_like(x, z) / r]), d2
+    return at
+
+
+def pixels(np, a, n, sub=8):
+    return a.reshape(n, sub, n, sub).mean((1, 3))
+
+
+def ggx(np, roughness):
+    a2 = roughness ** 4
+    D = lambda c: a2 / (np.pi * (c * c * (a2 - 1) + 1) ** 2)
+    lam = lambda c: (np.sqrt(1 + a2 * (1 - c * c) / (c * c)) - 1) / 2
+    return D, lam
+
+
+def fresnel(np, c, eta):
+    c = np.abs(c)
+    s2 = (1 - c * c) / eta ** 2
+    ct = np.sqrt(np.maximum(0, 1 - s2))
+    rs, rp = (c - eta * ct) / (c + eta * ct), (eta * c - ct) / (eta * c + ct)
+    return np.where(s2 >= 1, 1.0, (rs * rs + rp * rp) / 2)
+
+
+def plane_answer(np, n):
+    wi, d2 = directions(np, n)(DEPTH)
+    return pixels(np, INTENSITY * wi[2] / d2 / np.pi, n)
+
+
+def thin_wall_answer(np, n, roughness, two_faces=True):
+    D, lam = ggx(np, roughness)
+    wi, d2 = directions(np, n)(-DEPTH)
+    m = wi * np.array([1, 1, -1.0])[:, None, None] + np.array([0, 0, 1.0])[:, None, None]
+    m /= np.linalg.norm(m, axis=0)
+    R = fresnel(np, m[2], ETA)
+    T = 1 - 2 * R / (1 + R) if two_faces else 1 - R
+    ci = np.abs(wi[2])
+    f = T * D(m[2]) / (1 + lam(1.0) + lam(ci)) / (4 * ci)
+    return pixels(np, f * INTENSITY * ci / d2, n)
+
+
+def solid_answer(np, n, roughness, radiance_scaling):
+    """The viewer in air over glass of index ETA that holds the light: m ∝ −(wo + η wi)."""
+    D, lam = ggx(np, roughness)
+    wi, d2 = directions(np, n)(-DEPTH)
+    wo = np.array([0, 0, 1.0])[:, None, None] * np.ones_like(wi)
+    m = -(wo + ETA * wi)
+    m /= np.linalg.norm(m, axis=0)
+    m = np.where(m[2] < 0, -m, m)
+    om, im = (wo * m).sum(0), (wi * m).sum(0)
+    ci = np.abs(wi[2])
+    f = (1 - fresnel(np, om, ETA)) * D(m[2]) / (1 + lam(1.0) + lam(ci)) * np.abs(om * im) * ETA ** 2 / (ci * (om + ETA * im) ** 2)
+    if radiance_scaling:
+        f /= ETA ** 2
+    return pixels(np, np.where((om > 0) & (im < 0), f, 0) * INTENSITY * ci / d2, n)
+
+
+# ----------------------------------------------------------------------------- renders
+def load(exrstats, np, path):
+    img = exrstats.read_exr(path)
+    names = exrstats.rgb_names(list(img["channels"]))
+    g = np.asarray(img["channels"][names[1]], dtype=np.float64)
+    return g.reshape(img["height"], img["width"])
+
+
+def render(a, kind, roughness):
+    work = os.path.join(a.out, kind)
+    os.makedirs(work, exist_ok=True)
+    gltf = os.path.join(work, kind + ".gltf")
+    with open(gltf, "w") as f:
+        json.dump(scene(kind, roughness), f, indent=1)
+    size = ["--width", str(a.size), "--height", str(a.size)]
+    subprocess.run([a.prism, "render", gltf, "-o", os.path.join(work, "prism.exr"), "--spp", str(a.spp), "-q",
+                    "--no-energy-compensation", "--threads", str(a.threads)] + size, check=True, stdout=subprocess.DEVNULL)
+    r = subprocess.run([os.path.join(a.harness, "render_gltf.sh"), "--in", gltf, "--out", os.path.join(work, "cycles.exr"),
+                        "--spp", str(a.spp), "--threads", str(a.threads), "--lighting-mode", "COMPAT", "--filter", "box",
+                        "--filter-width", "1"] + size, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if r.returncode != 0:
+        sys.exit("lamp_pane: Cycles failed; log: %s" % os.path.join(work, "cycles.exr.log"))
+    return os.path.join(work, "prism.exr"), os.path.join(work, "cycles.exr")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--spp", type=int, default=256)
+    ap.add_argument("--size", type=int, default=128, help="image width and height (default 128)")
+    ap.add_argument("--roughness", type=float, default=0.6, help="the pane's glTF roughness (the shade's: 0.6)")
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--out", default=os.path.join(REPO, "out", "lamp_pane"))
+    ap.add_argument("--shared", default=os.path.join(os.path.dirname(REPO), "shared"))
+    ap.add_argument("--prism", default=os.path.join(REPO, "build", "apps", "prism"))
+    a = ap.parse_args()
+    a.harness = os.path.join(a.shared, "tools", "cycles")
+    if not os.path.isfile(os.path.join(a.harness, "render_gltf.sh")):
+        print("lamp_pane: SKIPPED: %s (the Cycles harness) not found" % a.harness)
+        return 0
+    if shutil.which("blender") is None:
+        print("lamp_pane: SKIPPED: Blender not found")
+        return 0
+    try:
+        import numpy as np
+    except ImportError:
+        print("lamp_pane: SKIPPED: numpy not importable (run it with /usr/bin/python3)")
+        return 0
+    sys.path.insert(0, a.harness)
+    sys.dont_write_bytecode = True
+    import exrstats
+
+    n, c = a.size, slice(a.size // 2 - 4, a.size // 2 + 4)
+    print("Point light %.0f cm from a %.0f cm square, %d spp, %dx%d, Prism --no-energy-compensation, Cycles COMPAT."
+          % (100 * DEPTH, 200 * HALF, a.spp, n, n))
+    print("%-44s %12s %12s %14s %14s" % ("answer", "image mean", "centre 8x8", "Prism / it", "Cycles / it"))
+    for kind, answers in (("plane", [("Lambert: I cos θ / (π d²)", lambda: plane_answer(np, n))]),
+                          ("pane", [("thin wall, two faces (glTF thin wall)", lambda: thin_wall_answer(np, n, a.roughness)),
+                                    ("thin wall, one face (the extension's sketch)",
+                                     lambda: thin_wall_answer(np, n, a.roughness, False)),
+                                    ("solid glass, no 1/η² (Cycles' reading)",
+                                     lambda: solid_answer(np, n, a.roughness, False)),
+                                    ("solid glass with 1/η²", lambda: solid_answer(np, n, a.roughness, True))])):
+        prism_exr, cycles_exr = render(a, kind, a.roughness)
+        p, cy = load(exrstats, np, prism_exr), load(exrstats, np, cycles_exr)
+        print("%s (roughness %.2f): Prism mean %.4f centre %.3f, Cycles mean %.4f centre %.3f"
+              % (kind, a.roughness, p.mean(), p[c, c].mean(), cy.mean(), cy[c, c].mean()))
+        for name, answer in answers:
+            e = answer()
+            print("  %-42s %12.4f %12.3f %7.4f %6.4f %7.4f %6.4f"
+                  % (name, e.mean(), e[c, c].mean(), p.mean() / e.mean(), p[c, c].mean() / e[c, c].mean(),
+                     cy.mean() / e.mean(), cy[c, c].mean() / e[c, c].mean()))
+    print("(ratios: image mean, then centre)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
