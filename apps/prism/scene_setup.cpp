@@ -90,19 +90,9 @@ const std::map<std::string, IntegratorKind>& integrator_kinds() {
 }
 
 const char* integrator_name(IntegratorKind kind) {
-  switch (kind) {
-    case IntegratorKind::path:
-      return "path";
-    case IntegratorKind::bdpt:
-      return "bdpt";
-    case IntegratorKind::vcm:
-      return "vcm";
-    case IntegratorKind::light:
-      return "light";
-    case IntegratorKind::whitted:
-      break;
-  }
-  return "whitted";
+  for (const auto& [name, k] : integrator_kinds())
+    if (k == kind) return name.c_str();
+  return "?";
 }
 const char* sampler_name(SamplerKind kind) { return kind == SamplerKind::independent ? "independent" : "sobol"; }
 

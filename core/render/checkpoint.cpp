@@ -18,10 +18,6 @@ constexpr char kMagic[8] = {'P', 'R', 'I', 'S', 'M', 'C', 'K', '4'};
 
 // The checksum covers every byte after the magic.
 
-// Bytes of a film's sums and counts per pixel, at least (without AOVs or spectral bins): Σ XYZ and
-// Σ XYZ² in 128-bit fixed point, a 32-bit sample count.
-constexpr uint64_t kMinBytesPerPixel = 6 * 16 + 4;
-
 // The pixels a state's film fields are stored for: the crop window, or the whole frame.
 PixelWindow stored_window(const RenderPart& part, int width, int height) {
   return part.crop.empty() ? PixelWindow{0, 0, width, height} : part.crop;
@@ -160,18 +156,24 @@ RenderState load_render_state(const std::filesystem::path& file) {
   const uint32_t aovs = r.value<uint32_t>();
   const std::string bins = r.text();
   if (width <= 0 || height <= 0) fail("{}: the checkpoint file is truncated or damaged", file.string());
-  // The window's sums are stored (at least 100 bytes a pixel); the film in memory is the frame's.
+  if (!(part.sample_begin >= 0 && part.sample_begin <= part.sample_end && part.sample_end <= part.total))
+    fail("{}: the checkpoint's sample range {}:{} of {} is not a range of the render (damaged?)", file.string(),
+         part.sample_begin, part.sample_end, part.total);
+  // The window's sums are stored; the film in memory is the frame's. Both are checked before the
+  // film is allocated: the window against the file's length, the frame against the machine.
+  const SpectralBins spectral_bins = bins.empty() ? SpectralBins{} : SpectralBins::parse(bins);
+  const uint64_t bytes_per_pixel = Film::bytes_per_pixel(aovs, spectral_bins);
   const PixelWindow window = stored_window(part, width, height);
   const PixelWindow& c = part.crop;
   if (!c.empty() && (c.x0 < 0 || c.y0 < 0 || c.x1 > width || c.y1 > height))
     fail("{}: the checkpoint's crop window lies outside its {}x{} frame (damaged?)", file.string(), width, height);
-  if (uint64_t(window.x1 - window.x0) * uint64_t(window.y1 - window.y0) > r.remaining / kMinBytesPerPixel)
+  if (uint64_t(window.x1 - window.x0) * uint64_t(window.y1 - window.y0) > r.remaining / bytes_per_pixel)
     fail("{}: the checkpoint file is truncated or damaged", file.string());
   const uint64_t memory = uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
-  if (uint64_t(width) * uint64_t(height) > memory / kMinBytesPerPixel)
+  if (uint64_t(width) * uint64_t(height) > memory / bytes_per_pixel)
     fail("{}: the checkpoint's {}x{} frame needs more memory than this machine has (damaged?)", file.string(), width,
          height);
-  RenderState state{Film(width, height, aovs, bins.empty() ? SpectralBins{} : SpectralBins::parse(bins))};
+  RenderState state{Film(width, height, aovs, spectral_bins)};
   r.window = window;
   r.width = width;
   r.pixels = state.film.pixel_count();

@@ -20,6 +20,12 @@ Film::Film(int width, int height, uint32_t aovs, SpectralBins bins)
       spectral_(pixel_count() * bins_.count(), 0),
       splat_(aovs & kFilmSplats ? pixel_count() * 3 : 0, 0) {}
 
+uint64_t Film::bytes_per_pixel(uint32_t aovs, const SpectralBins& bins) {
+  const uint64_t fixed = 3 + 3 + 3 + (aovs & (kAovAlbedo | kAovNormal | kAovDepth) ? kAovFields : 0) + bins.count() +
+                         (aovs & kFilmSplats ? 3 : 0);
+  return fixed * sizeof(Fixed) + 2 * sizeof(uint32_t);
+}
+
 bool Film::add(size_t p, const FilmSample& s, int replicate) {
   const bool valid = fixed_in_range(s.xyz.x) && fixed_in_range(s.xyz.y) && fixed_in_range(s.xyz.z);
   const Xyz xyz = valid ? s.xyz : Xyz{0, 0, 0};

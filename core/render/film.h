@@ -46,6 +46,10 @@ class Film {
   // derived from the sums); bins: the spectral bins to gather, or none.
   Film(int width, int height, uint32_t aovs = 0, SpectralBins bins = {});
 
+  // Bytes of sums and counts per pixel of a film made with these aovs and bins (what the
+  // constructor allocates), for refusing a frame that would not fit before allocating it.
+  static uint64_t bytes_per_pixel(uint32_t aovs, const SpectralBins& bins);
+
   int width() const { return width_; }
   int height() const { return height_; }
   size_t pixel_count() const { return size_t(width_) * height_; }

@@ -41,8 +41,9 @@ class PhotonGrid {
   }
 
  private:
-  // The cell coordinate of c (in cells), clamped so that far-away points cannot overflow.
-  static int cell(float c) { return int(std::clamp(std::floor(c), -2e9f, 2e9f)); }
+  // The cell coordinate of c (in cells), clamped so that far-away points cannot overflow (and NaN,
+  // which fails every comparison, taken as the lowest cell).
+  static int cell(float c) { return c >= -2e9f ? int(std::min(std::floor(c), 2e9f)) : -2000000000; }
   uint32_t bucket(int x, int y, int z) const {
     return ((uint32_t(x) * 73856093u) ^ (uint32_t(y) * 19349663u) ^ (uint32_t(z) * 83492791u)) % buckets_;
   }
