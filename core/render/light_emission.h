@@ -55,9 +55,7 @@ std::optional<EmissionSample<N>> sample_le(const Light& light, Vec2f u_pos, Vec2
   using Sample = std::optional<EmissionSample<N>>;
   if (const auto* a = std::get_if<AreaLight>(&light)) {
     // Uniform on the triangle, cosine-weighted about the emitting side (either, for two sides).
-    const Vec3f b = sample_uniform_triangle(u_pos);
-    const Vec3f p = a->p0 * b.x + a->p1 * b.y + a->p2 * b.z;
-    const Vec3f p_error = (abs(a->p0 * b.x) + abs(a->p1 * b.y) + abs(a->p2 * b.z)) * gamma(6);
+    const auto [b, p, p_error] = a->sample_point(u_pos);
     Vec3f n = a->n;
     float side_pdf = 1.f;
     if (a->two_sided) {

@@ -58,12 +58,19 @@ struct AreaLight {
     return cos_l > 0 ? distance * distance / (cos_l * area) : 0.f;
   }
 
+  // A point uniform on the triangle: its barycentrics b, position p and p's rounding bound.
+  struct Point {
+    Vec3f b, p, p_error;
+  };
+  Point sample_point(Vec2f u) const {
+    const Vec3f b = sample_uniform_triangle(u);
+    return {b, p0 * b.x + p1 * b.y + p2 * b.z, (abs(p0 * b.x) + abs(p1 * b.y) + abs(p2 * b.z)) * gamma(6)};
+  }
+
   template <int N>
   std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f u,
                                           const SampledWavelengths<N>& lambda) const {
-    const Vec3f b = sample_uniform_triangle(u);
-    const Vec3f p = p0 * b.x + p1 * b.y + p2 * b.z;
-    const Vec3f p_error = (abs(p0 * b.x) + abs(p1 * b.y) + abs(p2 * b.z)) * gamma(6);
+    const auto [b, p, p_error] = sample_point(u);
     Vec3f wi = p - ctx.p;
     const float distance = length(wi);
     if (distance == 0.f) return std::nullopt;
