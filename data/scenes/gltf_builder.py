@@ -1,6 +1,6 @@
 """Building blocks for Prism's generated glTF scenes (standard library only): vector helpers,
 flat and smooth meshes, glTF materials, and a writer of self-contained .gltf files (buffer embedded
-as a base64 data URI). Used by make_cornell.py and stress/make_stress.py.
+as a base64 data URI). Used by the make_*.py scripts here and stress/make_stress.py.
 """
 import base64
 import json
@@ -131,6 +131,30 @@ def prism(base_centre, side, length, yaw_deg=0.0):
     sides = [[f[i], f[(i + 1) % 3], b[(i + 1) % 3], b[i]] for i in range(3)]
     return convex_solid([f, b] + sides)
 
+def lathe(centre, profile, segments):
+    """Solid of revolution about the vertical axis through `centre`: `profile` is a closed loop of
+    (radius, height) points, walked so that the material lies to its left (counter-clockwise in
+    the r-y plane). Each profile edge becomes a band of quads, smooth around the axis and sharp at
+    the profile's corners; bands that touch the axis become fans."""
+    pos, nrm, idx = [], [], []
+    for (r0, y0), (r1, y1) in zip(profile, profile[1:] + profile[:1]):
+        length = math.hypot(r1 - r0, y1 - y0)
+        nr, ny = (y1 - y0) / length, -(r1 - r0) / length  # the edge's outward normal in the r-y plane
+        base = len(pos)
+        for j in range(segments + 1):
+            ph = 2.0 * math.pi * j / segments
+            c, s = math.cos(ph), math.sin(ph)
+            for r, y in ((r0, y0), (r1, y1)):
+                pos.append(add(centre, (r * c, y, r * s)))
+                nrm.append((nr * c, ny, nr * s))
+        for j in range(segments):
+            a, b, c_, d = base + 2 * j, base + 2 * j + 1, base + 2 * j + 3, base + 2 * j + 2
+            if r0 > 0:
+                idx += [a, b, d]
+            if r1 > 0:
+                idx += [b, c_, d]
+    return {"positions": pos, "normals": nrm, "indices": idx}
+
 # ---------------------------------------------------------------- materials
 def diffuse(name, rgb):
     return {"name": name, "pbrMetallicRoughness": {
@@ -177,13 +201,28 @@ def glass(name, ior, abbe, thickness, catalogue=None):
         m["extras"] = {"prism": {"glass": catalogue}}
     return m
 
+def with_attenuation(material, rgb, distance):
+    """The material with KHR_materials_volume's absorption: colour rgb left after `distance`."""
+    m = dict(material)
+    m["extensions"] = dict(m["extensions"])
+    m["extensions"]["KHR_materials_volume"] = dict(m["extensions"]["KHR_materials_volume"],
+                                                   attenuationColor=list(rgb), attenuationDistance=distance)
+    return m
+
+def spot_light(name, position, target, intensity, outer_deg, inner_deg):
+    """KHR_lights_punctual spot light (intensity in candela) at `position` aimed at `target`."""
+    return {"name": name, "type": "spot", "intensity": intensity, "color": [1.0, 1.0, 1.0],
+            "spot": {"innerConeAngle": math.radians(inner_deg), "outerConeAngle": math.radians(outer_deg)},
+            "translation": list(position), "rotation": look_rotation(position, target)}
+
 # ---------------------------------------------------------------- glTF writer
 def f32(v):
     return struct.unpack("<f", struct.pack("<f", v))[0]
 
-def build_gltf(objects, camera, generator, copyright, scene_name, root=None):
-    """One self-contained glTF: a mesh and node per object, the camera, all under an optional
-    root node (a dict with "translation" and/or "scale") that moves or scales the whole scene."""
+def build_gltf(objects, camera, generator, copyright, scene_name, root=None, lights=()):
+    """One self-contained glTF: a mesh and node per object, the camera, the punctual lights, all
+    under an optional root node (a dict with "translation" and/or "scale") that moves or scales
+    the whole scene."""
     blob = bytearray()
     g = {"asset": {"version": "2.0", "generator": generator, "copyright": copyright},
          "scene": 0, "scenes": [{"name": scene_name, "nodes": []}], "nodes": [], "meshes": [],
@@ -222,6 +261,11 @@ def build_gltf(objects, camera, generator, copyright, scene_name, root=None):
         k: camera[k] for k in ("aspectRatio", "yfov", "znear")}})
     g["nodes"].append({"name": camera["name"], "camera": 0,
                        "translation": camera["translation"], "rotation": camera["rotation"]})
+    for i, light in enumerate(lights):
+        g.setdefault("extensions", {}).setdefault("KHR_lights_punctual", {"lights": []})["lights"].append(
+            {k: v for k, v in light.items() if k not in ("translation", "rotation")})
+        g["nodes"].append({"name": light["name"], "translation": light["translation"], "rotation": light["rotation"],
+                           "extensions": {"KHR_lights_punctual": {"light": i}}})
     if root is None:
         g["scenes"][0]["nodes"] = list(range(len(g["nodes"])))
     else:
@@ -229,13 +273,14 @@ def build_gltf(objects, camera, generator, copyright, scene_name, root=None):
         g["scenes"][0]["nodes"] = [len(g["nodes"]) - 1]
     g["buffers"].append({"byteLength": len(blob), "uri": "data:application/octet-stream;base64,"
                          + base64.b64encode(bytes(blob)).decode("ascii")})
-    used = sorted({e for m in g["materials"] for e in m.get("extensions", {})})
+    used = sorted({e for m in g["materials"] for e in m.get("extensions", {})} | set(g.get("extensions", {})))
     if used:
         g["extensionsUsed"] = used
     return g
 
-def look_at_camera(name, eye, target, yfov_deg):
-    """A camera node looking from eye at target with +y up (glTF cameras look down local -z)."""
+def look_rotation(eye, target):
+    """The unit quaternion (x, y, z, w) that turns local -z towards target from eye, +y up (how
+    glTF cameras and spot lights look)."""
     f = normalize(sub(target, eye))
     r = normalize(cross(f, (0.0, 1.0, 0.0)))
     u = cross(r, f)
@@ -249,7 +294,11 @@ def look_at_camera(name, eye, target, yfov_deg):
         y = math.sqrt(max(0.0, 1 - m[0][0] + m[1][1] - m[2][2])) / 2
         z = math.sqrt(max(0.0, 1 - m[0][0] - m[1][1] + m[2][2])) / 2
         q = (x, y, z, 0.0)
-    return {"name": name, "translation": list(eye), "rotation": list(q),
+    return list(q)
+
+def look_at_camera(name, eye, target, yfov_deg):
+    """A camera node looking from eye at target with +y up (glTF cameras look down local -z)."""
+    return {"name": name, "translation": list(eye), "rotation": look_rotation(eye, target),
             "yfov": math.radians(yfov_deg), "aspectRatio": 1.0, "znear": 0.01}
 
 def write_gltf(path, gltf):
