@@ -4,7 +4,8 @@
 A tumbler with thin walls (IOR 1.5) two-thirds full of water (IOR 1.33, KHR_materials_volume with
 a faint blue-green attenuation) stands on a white table under one small, bright light, up and
 behind it; the glass focuses the light into a caustic on the table in front of it. The water
-stops 0.2 mm short of the glass (an air film), so that no two surfaces coincide. A report scene
+stops 0.2 mm short of the glass and the glass 0.1 mm over the table (air films), so that no two
+surfaces coincide. A report scene
 of `prism converge` (docs/bidirectional/).
 
 Run:  python3 data/scenes/make_glass_of_water.py
@@ -21,6 +22,7 @@ R, H = 0.035, 0.10       # tumbler: outer radius and height (m)
 WALL, BOTTOM = 0.002, 0.008
 WATER_TOP, GAP = 0.07, 0.0002
 SEGMENTS = 48
+BASE = (0.0, 0.0001, 0.0)
 
 TABLE = lambert("table", (0.75, 0.75, 0.75))
 GLASS = glass("glass", 1.5, None, 0.002)
@@ -43,8 +45,8 @@ def facing_square(centre, target, size):
 
 OBJECTS = [
     ("table", quad((-0.5, 0, 0.5), (0.5, 0, 0.5), (0.5, 0, -0.5), (-0.5, 0, -0.5)), TABLE),
-    ("tumbler", lathe((0.0, 0.0, 0.0), TUMBLER, SEGMENTS), GLASS),
-    ("water", lathe((0.0, 0.0, 0.0), WATER_BODY, SEGMENTS), WATER),
+    ("tumbler", lathe(BASE, TUMBLER, SEGMENTS), GLASS),
+    ("water", lathe(BASE, WATER_BODY, SEGMENTS), WATER),
     # A 3 cm square light 30 cm from the glass, behind it and above, facing it.
     ("light", facing_square((-0.12, 0.22, -0.15), (0.0, 0.05, 0.0), 0.03), LIGHT),
 ]
