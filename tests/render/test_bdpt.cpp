@@ -1,10 +1,12 @@
 // Bidirectional path tracing (core/render/bdpt.h) and vertex connection and merging (vcm.h)
-// against scenes of known answer and against the
-// path tracer on scenes it renders well (no caustics); light tracing alone (the t = 1 strategy)
-// against the analytic irradiance of a point light; determinism across thread counts; no NaN or
-// Inf on the stress scenes.
+// against scenes of known answer and against the path tracer on scenes it renders well (no
+// caustics); light tracing alone (the t = 1 strategy) against the analytic irradiance of a point
+// and of an area light; determinism across thread counts; no NaN or Inf on the stress scenes and
+// the caustic report scenes.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "base/log.h"
 #include "materials/catalogue.h"
@@ -120,6 +122,50 @@ TEST_CASE("light tracing alone reproduces a point light's irradiance on a plane,
   }
 }
 
+TEST_CASE("light tracing alone reproduces an area light's irradiance on a plane, Lambert's polygon formula") {
+  // A 0.5 × 0.5 square emitter of radiance L facing down at height 0.6, off the view's centre,
+  // over the 2 × 2 Lambertian square of the point-light test; the orthographic camera sits at
+  // 0.3, under the light, which it therefore does not see. Irradiance from a polygon of uniform
+  // radiance (Lambert 1760): E(p) = L/2 · |Σ_i β_i n·γ_i|, β_i the angle edge i subtends at p and
+  // γ_i the unit normal of the plane through p and that edge.
+  constexpr float kAlbedo = 0.5f, kRadiance = 2.f;
+  const Vec3d corners[] = {{0, 0.6, -0.2}, {0.5, 0.6, -0.2}, {0.5, 0.6, 0.3}, {0, 0.6, 0.3}};
+  Scene scene;
+  scene.materials.push_back(test::diffuse({kAlbedo, kAlbedo, kAlbedo}));
+  Material lamp = test::diffuse({0, 0, 0}, "lamp");
+  lamp.emission = RgbIlluminantSpectrum(Rgb{kRadiance, kRadiance, kRadiance});
+  scene.materials.push_back(lamp);
+  test::add_mesh(scene, test::make_quad({-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, 0));
+  test::add_mesh(scene, test::make_quad(Vec3f(corners[0]), {0.5f, 0, 0}, {0, 0, 0.5f}, 1));  // front −Y
+  const auto irradiance = [&](const Vec3d& p) {
+    double sum = 0;
+    for (int i = 0; i < 4; ++i) {
+      const Vec3d a = normalize(corners[i] - p), b = normalize(corners[(i + 1) % 4] - p);
+      sum += std::acos(std::clamp(dot(a, b), -1.0, 1.0)) * normalize(cross(a, b)).y;
+    }
+    return kRadiance / 2 * std::abs(sum);
+  };
+  const CameraDesc camera = looking_down(0.3f, 1);
+  constexpr int n = 16;
+  for (const IntegratorKind integrator : {IntegratorKind::light, IntegratorKind::bdpt}) {
+    INFO((integrator == IntegratorKind::light ? "light tracing" : "bdpt"));
+    test::TestRender r = test::render_rgb(scene, camera, n, n, 1024, 1, 1, 0, integrator);
+    CHECK(r.stats.invalid_samples == 0);
+    // Pixel by pixel divided by the expected radiance (E averaged over 8 × 8 points of the pixel).
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        double E = 0;
+        for (int i = 0; i < 8; ++i)
+          for (int j = 0; j < 8; ++j)
+            E += irradiance(Vec3d(-1 + 2 * (x + (i + 0.5) / 8) / n, 0, -1 + 2 * (y + (j + 0.5) / 8) / n));
+        const double expected = kAlbedo * (E / 64) / kPi;
+        for (int c = 0; c < 3; ++c) r.rgb[(size_t(y) * n + x) * 3 + c] /= float(expected);
+      }
+    test::check_mean(r, 0, 0, n, n, 1.0, 0.02);
+    test::check_mean(r, 0, 0, n / 2, n / 2, 1.0, 0.04);  // a quadrant: the splats land where they belong
+  }
+}
+
 TEST_CASE("bdpt and light tracing agree with the path tracer on the default scene without metal and glass") {
   const Scene scene = walls_only_cornell();
   const CameraDesc& camera = scene.cameras.at(0);
@@ -160,13 +206,14 @@ TEST_CASE("bdpt and vcm images, splats and photons included, are identical at 1 
   }
 }
 
-TEST_CASE("bdpt and vcm render the stress scenes and the dispersive prism with no NaN or Inf") {
+TEST_CASE("bdpt and vcm render the stress scenes and the caustic report scenes with no NaN or Inf") {
   log::set_level(log::Level::quiet);
   const std::filesystem::path dir(PRISM_SOURCE_DIR "/data/scenes");
   for (const auto& file :
-       {dir / "dispersion.gltf", dir / "cornell.gltf", dir / "stress/extreme_absorption.gltf",
-        dir / "stress/extreme_ior.gltf", dir / "stress/room_tiny.gltf", dir / "stress/room_huge.gltf",
-        dir / "stress/room_far.gltf", dir / "stress/room_slivers.gltf", dir / "stress/tiny_bright_light.gltf"}) {
+       {dir / "dispersion.gltf", dir / "prism_rainbow.gltf", dir / "glass_of_water.gltf", dir / "diamond.gltf",
+        dir / "cornell.gltf", dir / "stress/extreme_absorption.gltf", dir / "stress/extreme_ior.gltf",
+        dir / "stress/room_tiny.gltf", dir / "stress/room_huge.gltf", dir / "stress/room_far.gltf",
+        dir / "stress/room_slivers.gltf", dir / "stress/tiny_bright_light.gltf"}) {
     INFO(file.string());
     Scene scene = load_gltf(file);
     if (scene.point_lights.empty() && !scene.environment) scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
