@@ -2,7 +2,8 @@
 """Why the clear-coated and sheen assets render darker in Prism than in Cycles (issue 12), on the
 smallest scene that shows it: a Lambertian plane (glTF base colour ρ, specularFactor 0) under a
 uniform white environment, seen straight on by an orthographic camera, bare, under a smooth clear
-coat (factor 1, index 1.5) and under a sheen (colour 1, roughness 0.5), each with ρ = 0.5 and ρ = 0.
+coat (factor 1, index 1.5), under a sheen (colour 1, roughness 0.5) and under the base's own
+specular layer (specularFactor 1; the others have 0), each with ρ = 0.5 and ρ = 0.
 Renders them with Prism and with Blender 3.4 Cycles (the harness in ../shared/tools/cycles, which
 scales Principled v1's clearcoat by 4 to undo its 0.25) and separates each layer into:
 
@@ -17,7 +18,10 @@ so the base keeps (1 − F(1))(1 − F_avg) = 0.872 of its light seen straight o
 undimmed base, and Blender's importer adds a Velvet BSDF (Ashikhmin's, not the Charlie sheen) to the
 Principled BSDF with an Add Shader: the base keeps 1.000 of its light under both. The layers' own
 reflections agree for the coat (F(1) = 0.04 in both) and differ for the sheen (the two fibre
-distributions).
+distributions). The same holds, smaller, for the base's own specular layer (specularFactor 1):
+Prism's diffuse keeps 1 − E(μ_o) of its light under it, Cycles' all of it; but at roughness 1 that
+layer's own reflection is several times Prism's in Cycles' (compensated GGX against Cycles 3.4's
+single-scattering one), so it does not explain SpecularTest's darker Prism image.
 
     tools/layering_cycles.py [--spp 64] [--size 32] [--out out/layering_cycles]
 
@@ -41,7 +45,7 @@ def scene(rho, layer):
     p = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
     blob = struct.pack("<12f", *[c for v in p for c in v]) + struct.pack("<12f", *[0, 0, 1] * 4) + \
         struct.pack("<6I", 0, 1, 2, 0, 2, 3)
-    extensions = {"KHR_materials_specular": {"specularFactor": 0.0}}
+    extensions = {"KHR_materials_specular": {"specularFactor": 1.0 if layer == "specular" else 0.0}}
     if layer == "coat":
         extensions["KHR_materials_clearcoat"] = {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.0}
     elif layer == "sheen":
@@ -131,12 +135,14 @@ def main():
     bare = render(a, exrstats, a.rho, "bare")
     print("%-7s %-34s %9s %9s %s" % ("layer", "quantity", "Prism", "Cycles", "model"))
     print("%-7s %-34s %9.4f %9.4f ρ = %g (Cycles: Burley's diffuse)" % ("none", "L(bare, ρ)", *bare, a.rho))
-    for layer in ("coat", "sheen"):
+    for layer in ("coat", "sheen", "specular"):
         alone, under = render(a, exrstats, 0.0, layer), render(a, exrstats, a.rho, layer)
         kept = [(u - o) / b for u, o, b in zip(under, alone, bare)]
-        own = "F(1) = %.4f in both" % f0 if layer == "coat" else "Charlie (Prism) vs Ashikhmin's velvet (Cycles)"
-        keeps = ("glTF layering (1 − F(1))(1 − F_avg) = %.4f; additive (Cycles v1) 1" % ((1 - f0) * (1 - f_avg))
-                 if layer == "coat" else "glTF layering 1 − s E_sheen < 1; additive (Add Shader) 1")
+        own = {"coat": "F(1) = %.4f in both" % f0, "sheen": "Charlie (Prism) vs Ashikhmin's velvet (Cycles)",
+               "specular": "the base's own GGX layer (roughness 1)"}[layer]
+        keeps = {"coat": "glTF layering (1 − F(1))(1 − F_avg) = %.4f; additive (Cycles v1) 1" % ((1 - f0) * (1 - f_avg)),
+                 "sheen": "glTF layering 1 − s E_sheen < 1; additive (Add Shader) 1",
+                 "specular": "coupled diffuse 1 − E(1) < 1; additive (Cycles v1) 1"}[layer]
         print("%-7s %-34s %9.4f %9.4f %s" % (layer, "own reflection L(layer, 0)", *alone, own))
         print("%-7s %-34s %9.4f %9.4f %s" % (layer, "base kept (L(layer,ρ) − L(layer,0))/L", *kept, keeps))
     return 0
