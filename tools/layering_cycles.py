@@ -20,7 +20,7 @@ Principled BSDF with an Add Shader: the base keeps 1.000 of its light under both
 reflections agree for the coat (F(1) = 0.04 in both) and differ for the sheen (the two fibre
 distributions). The same holds, smaller, for the base's own specular layer (specularFactor 1):
 Prism's diffuse keeps 1 − E(μ_o) of its light under it, Cycles' all of it; but at roughness 1 that
-layer's own reflection is several times Prism's in Cycles' (compensated GGX against Cycles 3.4's
+layer's own reflection in Prism is several times Cycles' (compensated GGX against Cycles 3.4's
 single-scattering one), so it does not explain SpecularTest's darker Prism image.
 
     tools/layering_cycles.py [--spp 64] [--size 32] [--out out/layering_cycles]
