@@ -1,6 +1,7 @@
-// albedo_tables: computes the directional albedos of the GGX and sheen lobes (materials/albedo_tables.h)
-// and writes them as C++ source, albedo_tables_data.cpp. The build runs it once (a few seconds on 2
-// cores; see materials/CMakeLists.txt) and compiles the result into prism::materials.
+// albedo_tables: computes the directional albedos of the GGX and sheen lobes and the thin film's
+// reflectance excess (materials/albedo_tables.h) and writes them as C++ source,
+// albedo_tables_data.cpp. The build runs it once (a few seconds on 2 cores; see
+// materials/CMakeLists.txt) and compiles the result into prism::materials.
 
 #include "materials/albedo_tables.h"
 
@@ -16,6 +17,7 @@
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"
 #include "materials/sheen_bsdf.h"
+#include "materials/thin_film.h"
 
 namespace {
 
@@ -119,6 +121,12 @@ float fill_sheen_row(float* e, int a) {
   return 1 / peak;
 }
 
+// One film index's row of the film-excess table, over the base's index.
+void fill_film_row(float* film, int a) {
+  for (int b = 0; b <= kFilmSteps; ++b)
+    film[a * (kFilmSteps + 1) + b] = film_reflectance_excess_exact(film_index_of(a), film_index_of(b));
+}
+
 // Floats as hexadecimal literals: exact.
 std::string array(const float* v, int n) {
   std::string s = "{";
@@ -137,13 +145,16 @@ int main(int argc, char** argv) {
   const auto slices = std::make_unique<Slice[]>(kEta);
   const auto white = std::make_unique<Grid>();
   float sheen_e[kSheenAlpha * kSheenMu], sheen_scale[kSheenAlpha];
-  parallel_for(kEta + 1 + kSheenAlpha, [&](int64_t i) {
+  float film[(kFilmSteps + 1) * (kFilmSteps + 1)];
+  parallel_for(kEta + 1 + kSheenAlpha + kFilmSteps + 1, [&](int64_t i) {
     if (i < kEta)
       fill_slice(slices[i], int(i));
     else if (i == kEta)
       fill_white(*white);
-    else
+    else if (i < kEta + 1 + kSheenAlpha)
       sheen_scale[i - kEta - 1] = fill_sheen_row(sheen_e + (i - kEta - 1) * kSheenMu, int(i - kEta - 1));
+    else
+      fill_film_row(film, int(i - kEta - 1 - kSheenAlpha));
   });
 
   std::string out =
@@ -155,7 +166,8 @@ int main(int argc, char** argv) {
   out += "};\n\nconst Grid specular_white = " + grid(*white) +
          ";\n\nconst float sheen_e[kSheenAlpha * kSheenMu] = " + array(sheen_e, kSheenAlpha * kSheenMu) +
          ";\n\nconst float sheen_scale[kSheenAlpha] = " + array(sheen_scale, kSheenAlpha) +
-         ";\n\n}  // namespace prism::albedo_tables\n";
+         ";\n\nconst float film_excess[(kFilmSteps + 1) * (kFilmSteps + 1)] = " +
+         array(film, (kFilmSteps + 1) * (kFilmSteps + 1)) + ";\n\n}  // namespace prism::albedo_tables\n";
   const std::string tmp = std::string(argv[1]) + ".tmp";
   FILE* f = std::fopen(tmp.c_str(), "w");
   if (!f || std::fwrite(out.data(), 1, out.size(), f) != out.size() || std::fclose(f) != 0 ||

@@ -1,8 +1,8 @@
 #pragma once
 // The directional-albedo tables of the specular and sheen lobes (specular_albedo.h,
-// sheen_albedo.h): their layout, their interpolation, and the data. The data are computed by the
-// project at build time (apps/albedo_tables.cpp writes albedo_tables_data.cpp, compiled into
-// prism::materials), so no render pays for them and every run reads the same numbers.
+// sheen_albedo.h), and the thin film's reflectance excess (thin_film.h): their layout, their interpolation, and the
+// data. The data are computed by the project at build time (apps/albedo_tables.cpp writes albedo_tables_data.cpp,
+// compiled into prism::materials), so no render pays for them and every run reads the same numbers.
 
 #include <algorithm>
 #include <cmath>
@@ -81,10 +81,17 @@ inline float sheen_mu_of(int m) {
   return std::max(s * s, 1e-4f);
 }
 
+// Thin film: the most its reflectance exceeds its coupling interface's (film_reflectance_excess,
+// thin_film.h), on nodes 0.05 apart in the film's and the base's indices n_f, η ∈ [1, 3].
+constexpr int kFilmSteps = 40;
+constexpr float kFilmStep = 2.f / kFilmSteps;
+inline float film_index_of(int a) { return 1 + float(a) * kFilmStep; }
+
 // The data (albedo_tables_data.cpp, generated).
 extern const Slice specular[kEta];
 extern const Grid specular_white;  // reflection with F = 1
 extern const float sheen_e[kSheenAlpha * kSheenMu];
 extern const float sheen_scale[kSheenAlpha];
+extern const float film_excess[(kFilmSteps + 1) * (kFilmSteps + 1)];  // [n_f node][η node]
 
 }  // namespace prism::albedo_tables

@@ -65,12 +65,16 @@ class PbrBsdf {
       if (!extras) return;
       extras_ = Parts{extras->diffuse_transmission, extras->transmitted_albedo, {}};
       if (!extras->lane_etas) return;
-      extras_->lanes = LaneCoupling{*extras->lane_etas, extras->lane_excess.value_or(SampledSpectrum<N>(0.f)), {}};
-      const float white_average = extras->lane_excess ? SpecularAlbedo::table().white_average(alpha) : 0.f;
-      for (int i = 0; i < N; ++i)
-        extras_->lanes->e_avg[i] =
-            specular * (SpecularAlbedo::table().average(roughness_, (*extras->lane_etas)[i], compensated) +
-                        extras_->lanes->excess[i] * white_average);
+      extras_->lanes = LaneCoupling{{}, extras->lane_excess.value_or(SampledSpectrum<N>(0.f)), {}};
+      const float white_average = extras->lane_excess ? SpecularAlbedo::table().white_average(roughness_) : 0.f;
+      LaneCoupling& lanes = *extras_->lanes;
+      for (int i = 0; i < N; ++i) {
+        lanes.eta[i] = (*extras->lane_etas)[i];
+        const bool same = i > 0 && lanes.eta[i] == lanes.eta[i - 1] && lanes.excess[i] == lanes.excess[i - 1];
+        lanes.e_avg[i] = same ? lanes.e_avg[i - 1]
+                              : specular * (SpecularAlbedo::table().average(roughness_, lanes.eta[i], compensated) +
+                                            lanes.excess[i] * white_average);
+      }
     }
   }
 
@@ -160,19 +164,21 @@ class PbrBsdf {
     } else {
       if (!extras_ || !extras_->lanes) return SampledSpectrum<N>(scalar_coupling(wo, wi));
       const LaneCoupling& lanes = *extras_->lanes;
+      const SpecularAlbedo& table = SpecularAlbedo::table();
+      // μ_o and μ_i found on the tables once, for all the lanes' indices.
+      const SpecularAlbedo::Direction o = SpecularAlbedo::direction(std::abs(wo.z), roughness_),
+                                      in = SpecularAlbedo::direction(std::abs(wi.z), roughness_);
       const bool film = lanes.excess.max() > 0;
-      const float white_o = film ? SpecularAlbedo::table().white(std::abs(wo.z), roughness_) : 0.f,
-                  white_i = film ? SpecularAlbedo::table().white(std::abs(wi.z), roughness_) : 0.f;
+      const float white_o = film ? table.white(o) : 0.f, white_i = film ? table.white(in) : 0.f;
+      std::array<float, N> e_o, e_i;
+      table.E(o, lanes.eta, compensated_, e_o);
+      table.E(in, lanes.eta, compensated_, e_i);
       SampledSpectrum<N> c;
-      for (int i = 0; i < N; ++i) {
-        const auto lane_E = [&](float mu, float white) {
-          return specular_ * (SpecularAlbedo::table().E(std::abs(mu), roughness_, lanes.eta[i], compensated_) +
-                              lanes.excess[i] * white);
-        };
-        c[i] = lanes.e_avg[i] < 1 ? std::max(0.f, 1 - lane_E(wo.z, white_o)) *
-                                        std::max(0.f, 1 - lane_E(wi.z, white_i)) / (1 - lanes.e_avg[i])
-                                  : 0.f;
-      }
+      for (int i = 0; i < N; ++i)
+        c[i] = lanes.e_avg[i] < 1
+                   ? std::max(0.f, 1 - specular_ * (e_o[i] + lanes.excess[i] * white_o)) *
+                         std::max(0.f, 1 - specular_ * (e_i[i] + lanes.excess[i] * white_i)) / (1 - lanes.e_avg[i])
+                   : 0.f;
       return c;
     }
   }
@@ -212,7 +218,8 @@ class PbrBsdf {
   }
 
   struct LaneCoupling {
-    SampledSpectrum<N> eta, excess, e_avg;
+    std::array<float, N> eta;  // as an array: the albedo tables read all lanes at once
+    SampledSpectrum<N> excess, e_avg;
   };
   struct Parts {
     float diffuse_transmission;
@@ -262,13 +269,13 @@ class LayeredBsdf {
               coat && coat->compensated),
         coat_compensated_(coat && coat->compensated),
         coat_weight_(coat ? coat->weight : 0),
-        coat_alpha_(coat ? coat->alpha : 0),
+        coat_roughness_(SpecularAlbedo::roughness(coat ? coat->alpha : 0)),
         coat_eta_(coat ? std::max(coat->eta, 1.f) : 1),
         coat_tilted_(coat && coat->normal != Vec3f(0, 0, 1)),
         coat_frame_(Frame::from_z(coat_tilted_ ? coat->normal : Vec3f(0, 0, 1))),
         sheen_(sheen ? sheen->color : SampledSpectrum<N>(0.f), sheen ? sheen->alpha : 1),
         sheen_weight_(sheen ? sheen->color.max() : 0),
-        sheen_alpha_(sheen ? sheen->alpha : 1) {}
+        sheen_roughness_(SheenAlbedo::roughness(sheen ? sheen->alpha : 1)) {}
 
   bool is_specular() const {
     return base_.is_specular() && sheen_weight_ == 0 && (coat_weight_ == 0 || coat_.is_specular());
@@ -285,13 +292,7 @@ class LayeredBsdf {
     return d;
   }
 
-  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
-    SampledSpectrum<N> r = base_.f(wo, wi) * sheen_scale(wo, wi);
-    if (sheen_weight_ > 0) r += sheen_.f(wo, wi);
-    r *= coat_scale(wo, wi);
-    if (coat_weight_ > 0 && same_hemisphere(wo, wi)) r += coat_.f(to_coat(wo, wo), to_coat(wo, wi)) * coat_weight_;
-    return r;
-  }
+  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const { return layered_f(wo, wi, base_.f(wo, wi)); }
 
   float pdf(const Vec3f& wo, const Vec3f& wi) const { return mixture_pdf(wo, wi, layer_probabilities(wo)); }
 
@@ -310,13 +311,18 @@ class LayeredBsdf {
       }
     } else if (uc < p[0] + p[1]) {
       s = sheen_.sample_f(wo, 0, u);
-    } else {
+    } else {  // the base's own f and pdf at its sample are the parts the whole needs of it
       s = base_.sample_f(wo, std::min((uc - p[0] - p[1]) / p[2], 0.99999994f), u);
-      if (s && s->specular) {
+      if (!s) return std::nullopt;
+      if (s->specular) {
         s->f *= base_scale(wo, s->wi);
         s->pdf *= p[2];
         return s;
       }
+      s->f = layered_f(wo, s->wi, s->f);
+      s->pdf = mixture_pdf(wo, s->wi, p, s->pdf);
+      if (!(s->pdf > 0)) return std::nullopt;
+      return s;
     }
     if (!s) return std::nullopt;
     s->f = f(wo, s->wi);
@@ -326,6 +332,15 @@ class LayeredBsdf {
   }
 
  private:
+  // The whole, for the base's value base_f at (wo, wi).
+  SampledSpectrum<N> layered_f(const Vec3f& wo, const Vec3f& wi, const SampledSpectrum<N>& base_f) const {
+    SampledSpectrum<N> r = base_f * sheen_scale(wo, wi);
+    if (sheen_weight_ > 0) r += sheen_.f(wo, wi);
+    r *= coat_scale(wo, wi);
+    if (coat_weight_ > 0 && same_hemisphere(wo, wi)) r += coat_.f(to_coat(wo, wo), to_coat(wo, wi)) * coat_weight_;
+    return r;
+  }
+
   // w in the coat's frame, seen from wo's side taken up (the coat is evaluated above the
   // surface), and back.
   Vec3f to_coat(const Vec3f& wo, const Vec3f& w) const {
@@ -340,9 +355,9 @@ class LayeredBsdf {
   // The coat's albedo towards w (none from below the coat's own horizon).
   float coat_E(const Vec3f& w) const {
     const float mu = (coat_tilted_ ? dot(w.z < 0 ? -w : w, coat_frame_.z) : std::abs(w.z));
-    return mu > 0 ? coat_weight_ * SpecularAlbedo::table().E(mu, coat_alpha_, coat_eta_, coat_compensated_) : 0.f;
+    return mu > 0 ? coat_weight_ * SpecularAlbedo::table().E(mu, coat_roughness_, coat_eta_, coat_compensated_) : 0.f;
   }
-  float sheen_E(float mu) const { return sheen_weight_ * SheenAlbedo::table().E(std::abs(mu), sheen_alpha_); }
+  float sheen_E(float mu) const { return sheen_weight_ * SheenAlbedo::table().E(std::abs(mu), sheen_roughness_); }
   float coat_scale(const Vec3f& wo, const Vec3f& wi) const {
     return coat_weight_ > 0 ? (1 - coat_E(wo)) * (1 - coat_E(wi)) : 1.f;
   }
@@ -352,7 +367,10 @@ class LayeredBsdf {
   float base_scale(const Vec3f& wo, const Vec3f& wi) const { return coat_scale(wo, wi) * sheen_scale(wo, wi); }
 
   float mixture_pdf(const Vec3f& wo, const Vec3f& wi, const std::array<float, 3>& p) const {
-    float r = p[2] * base_.pdf(wo, wi);
+    return mixture_pdf(wo, wi, p, base_.pdf(wo, wi));
+  }
+  float mixture_pdf(const Vec3f& wo, const Vec3f& wi, const std::array<float, 3>& p, float base_pdf) const {
+    float r = p[2] * base_pdf;
     if (p[0] > 0 && same_hemisphere(wo, wi)) r += p[0] * coat_.pdf(to_coat(wo, wo), to_coat(wo, wi));
     if (p[1] > 0) r += p[1] * sheen_.pdf(wo, wi);
     return r;
@@ -371,11 +389,14 @@ class LayeredBsdf {
   PbrBsdf<N, true> base_;
   DielectricBsdf<N> coat_;
   bool coat_compensated_;
-  float coat_weight_, coat_alpha_, coat_eta_;
+  float coat_weight_;
+  SpecularAlbedo::Roughness coat_roughness_;  // where the coat's α falls on the albedo tables
+  float coat_eta_;
   bool coat_tilted_;
   Frame coat_frame_;
   SheenBsdf<N> sheen_;
-  float sheen_weight_, sheen_alpha_;
+  float sheen_weight_;
+  SheenAlbedo::Roughness sheen_roughness_;  // where the sheen's α falls on its albedo table
 };
 
 }  // namespace prism

@@ -21,12 +21,17 @@ float SheenAlbedo::scale(float alpha) const {
   return lerp(y - float(j), sheen_scale[j], sheen_scale[j + 1]);
 }
 
-float SheenAlbedo::E(float mu, float alpha) const {
-  const float x = std::sqrt(std::clamp(mu, 0.f, 1.f)) * (kSheenMu - 1);
+SheenAlbedo::Roughness SheenAlbedo::roughness(float alpha) {
   const float y = std::sqrt(std::clamp(alpha, 0.f, 1.f)) * (kSheenAlpha - 1);
-  const int i = std::min(int(x), kSheenMu - 2), j = std::min(int(y), kSheenAlpha - 2);
-  const float tx = x - float(i), ty = y - float(j);
-  const float* e = sheen_e + j * kSheenMu + i;
+  const int j = std::min(int(y), kSheenAlpha - 2);
+  return {j, y - float(j)};
+}
+
+float SheenAlbedo::E(float mu, const Roughness& r) const {
+  const float x = std::sqrt(std::clamp(mu, 0.f, 1.f)) * (kSheenMu - 1);
+  const int i = std::min(int(x), kSheenMu - 2);
+  const float tx = x - float(i), ty = r.t;
+  const float* e = sheen_e + r.j * kSheenMu + i;
   return (1 - ty) * ((1 - tx) * e[0] + tx * e[1]) + ty * ((1 - tx) * e[kSheenMu] + tx * e[kSheenMu + 1]);
 }
 

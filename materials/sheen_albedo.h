@@ -11,8 +11,17 @@ namespace prism {
 
 class SheenAlbedo {
  public:
+  // Where a roughness α falls on the table's α axis (a square root): found once by a layer that
+  // looks up E at several μ.
+  struct Roughness {
+    int j;
+    float t;
+  };
+  static Roughness roughness(float alpha);
+
   static const SheenAlbedo& table();
-  float E(float mu, float alpha) const;
+  float E(float mu, const Roughness& r) const;
+  float E(float mu, float alpha) const { return E(mu, roughness(alpha)); }
   float scale(float alpha) const;
 };
 

@@ -13,8 +13,15 @@ namespace {
 bool smooth(const SpecularAlbedo::Roughness& r) { return TrowbridgeReitz::effectively_smooth(r.alpha); }
 
 Point point(float mu, const SpecularAlbedo::Roughness& r) { return albedo_tables::point(mu, Lerp{r.a, r.ta}); }
+Point point(const SpecularAlbedo::Direction& d) { return {d.a, d.m, d.ta, d.tm}; }
 
 const Grid& reflection(int h, bool compensated) { return compensated ? specular[h].r_compensated : specular[h].r; }
+
+// The reflection tables at p, interpolated to η.
+float reflection_at(const Point& p, float eta, bool compensated) {
+  const Lerp h = locate_eta(eta);
+  return (1 - h.t) * reflection(h.i, compensated).at(p) + h.t * reflection(h.i + 1, compensated).at(p);
+}
 
 }  // namespace
 
@@ -23,16 +30,38 @@ SpecularAlbedo::Roughness SpecularAlbedo::roughness(float alpha) {
   return {alpha, a.i, a.t};
 }
 
+SpecularAlbedo::Direction SpecularAlbedo::direction(float mu, const Roughness& r) {
+  if (smooth(r)) return {mu, true, 0, 0, 0, 0};
+  const Point p = point(mu, r);
+  return {mu, false, p.a, p.m, p.ta, p.tm};
+}
+
 const SpecularAlbedo& SpecularAlbedo::table() {
   static const SpecularAlbedo t;
   return t;
 }
 
+float SpecularAlbedo::E(const Direction& d, float eta, bool compensated) const {
+  return d.smooth ? fresnel_dielectric(d.mu, eta) : reflection_at(point(d), eta, compensated);
+}
+
+void SpecularAlbedo::E(const Direction& d, std::span<const float> eta, bool compensated, std::span<float> out) const {
+  if (d.smooth) {
+    for (size_t i = 0; i < eta.size(); ++i) out[i] = fresnel_dielectric(d.mu, eta[i]);
+    return;
+  }
+  const Point p = point(d);
+  int cell = -1;
+  float e0 = 0, e1 = 0;  // E at the cell's two η nodes
+  for (size_t i = 0; i < eta.size(); ++i) {
+    const Lerp h = locate_eta(eta[i]);
+    if (h.i != cell) cell = h.i, e0 = reflection(h.i, compensated).at(p), e1 = reflection(h.i + 1, compensated).at(p);
+    out[i] = (1 - h.t) * e0 + h.t * e1;
+  }
+}
+
 float SpecularAlbedo::E(float mu, const Roughness& r, float eta, bool compensated) const {
-  if (smooth(r)) return fresnel_dielectric(mu, eta);
-  const Lerp h = locate_eta(eta);
-  const Point p = point(mu, r);
-  return (1 - h.t) * reflection(h.i, compensated).at(p) + h.t * reflection(h.i + 1, compensated).at(p);
+  return smooth(r) ? fresnel_dielectric(mu, eta) : reflection_at(point(mu, r), eta, compensated);
 }
 
 float SpecularAlbedo::average(const Roughness& r, float eta, bool compensated) const {
@@ -48,13 +77,12 @@ float SpecularAlbedo::interface(float mu, const Roughness& r, float eta) const {
   return (1 - h.t) * specular[h.i].rt.at(p) + h.t * specular[h.i + 1].rt.at(p);
 }
 
+float SpecularAlbedo::white(const Direction& d) const { return d.smooth ? 1.f : specular_white.at(point(d)); }
+
+float SpecularAlbedo::white_average(const Roughness& r) const { return specular_white.average({r.a, r.ta}); }
+
 float SpecularAlbedo::white(float mu, const Roughness& r) const {
   return smooth(r) ? 1.f : specular_white.at(point(mu, r));
-}
-
-float SpecularAlbedo::white_average(float alpha) const {
-  const Roughness r = roughness(alpha);
-  return specular_white.average({r.a, r.ta});
 }
 
 }  // namespace prism

@@ -16,6 +16,8 @@
 // smoothly enough for linear interpolation; the tables are computed at build time
 // (materials/albedo_tables.h), so a lookup only interpolates.
 
+#include <span>
+
 namespace prism {
 
 class SpecularAlbedo {
@@ -28,11 +30,25 @@ class SpecularAlbedo {
     float ta;
   };
   static Roughness roughness(float alpha);
+  // Where a direction μ falls on the tables' μ axis (a square root), for that roughness: found
+  // once by a lobe that looks up E at one μ for several indices (one per lane).
+  struct Direction {
+    float mu;
+    bool smooth;
+    int a, m;
+    float ta, tm;
+  };
+  static Direction direction(float mu, const Roughness& r);
 
   static const SpecularAlbedo& table();
+  float E(const Direction& d, float eta, bool compensated) const;
+  // E at one direction for several indices (one per lane) at once: lanes whose η fall in the
+  // same cell of the η axis (neighbouring wavelengths, mostly) read its two tables once.
+  void E(const Direction& d, std::span<const float> eta, bool compensated, std::span<float> out) const;
   float E(float mu, const Roughness& r, float eta, bool compensated) const;
   float average(const Roughness& r, float eta, bool compensated) const;
   float interface(float mu, const Roughness& r, float eta) const;
+  float white(const Direction& d) const;
   float white(float mu, const Roughness& r) const;
   float E(float mu, float alpha, float eta, bool compensated) const {
     return E(mu, roughness(alpha), eta, compensated);
@@ -40,7 +56,8 @@ class SpecularAlbedo {
   float average(float alpha, float eta, bool compensated) const { return average(roughness(alpha), eta, compensated); }
   float interface(float mu, float alpha, float eta) const { return interface(mu, roughness(alpha), eta); }
   float white(float mu, float alpha) const { return white(mu, roughness(alpha)); }
-  float white_average(float alpha) const;
+  float white_average(const Roughness& r) const;
+  float white_average(float alpha) const { return white_average(roughness(alpha)); }
 };
 
 }  // namespace prism

@@ -20,9 +20,9 @@
 #include <cmath>
 #include <complex>
 #include <optional>
-#include <vector>
 
 #include "base/math.h"
+#include "materials/albedo_tables.h"
 #include "materials/fresnel.h"
 #include "spectral/sampled_spectrum.h"
 #include "spectral/wavelengths.h"
@@ -137,21 +137,14 @@ inline float film_reflectance_excess_exact(float n_film, float eta) {
   return x;
 }
 
-// The same, tabulated over n_f, η ∈ [1, 3] (computed on first use, a few tens of milliseconds)
-// and read as the largest of a cell's corners; outside the table, computed.
+// The same, tabulated over n_f, η ∈ [1, 3] at build time (albedo_tables.h) and read as the largest
+// of a cell's corners; outside the table, computed.
 inline float film_reflectance_excess(float n_film, float eta) {
-  constexpr int kSteps = 40;  // 0.05 apart
-  const float u = (n_film - 1) * (kSteps / 2.f), v = (eta - 1) * (kSteps / 2.f);
-  if (!(u >= 0 && v >= 0 && u < kSteps && v < kSteps)) return film_reflectance_excess_exact(n_film, eta);
-  static const std::vector<float> table = [] {
-    std::vector<float> t(sqr(kSteps + 1));
-    for (int a = 0; a <= kSteps; ++a)
-      for (int b = 0; b <= kSteps; ++b)
-        t[a * (kSteps + 1) + b] = film_reflectance_excess_exact(1 + a * (2.f / kSteps), 1 + b * (2.f / kSteps));
-    return t;
-  }();
+  using namespace albedo_tables;
+  const float u = (n_film - 1) * (kFilmSteps / 2.f), v = (eta - 1) * (kFilmSteps / 2.f);
+  if (!(u >= 0 && v >= 0 && u < kFilmSteps && v < kFilmSteps)) return film_reflectance_excess_exact(n_film, eta);
   const int a = int(u), b = int(v);
-  const auto at = [&](int i, int j) { return table[(a + i) * (kSteps + 1) + b + j]; };
+  const auto at = [&](int i, int j) { return film_excess[(a + i) * (kFilmSteps + 1) + b + j]; };
   return std::max({at(0, 0), at(0, 1), at(1, 0), at(1, 1)});
 }
 

@@ -2,8 +2,11 @@
 // characteristic-matrix (transfer-matrix) method of Born & Wolf §1.6.2, in double, which never
 // forms Airy's geometric series.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <complex>
+#include <utility>
 
 #include "materials/catalogue.h"
 #include "materials/fresnel.h"
@@ -81,4 +84,24 @@ TEST_CASE("thin film: a quarter-wave film of index √n on glass is an anti-refl
   CHECK(thin_film_reflectance(1, lambda, d, 1, nf, float(n)) == Approx(0).margin(1e-6));
   // Half-wave: absent at its design wavelength.
   CHECK(thin_film_reflectance(1, lambda, 2 * d, 1, nf, float(n)) == Approx(0.04).margin(1e-6));
+}
+
+TEST_CASE("thin film: the build-time excess table is the direct computation, and bounds the film over its coupling") {
+  using namespace albedo_tables;
+  for (const auto& [a, b] : {std::pair{0, 0}, {10, 10}, {16, 10}, {33, 7}, {40, 40}, {5, 38}})
+    CHECK(film_excess[a * (kFilmSteps + 1) + b] ==
+          Approx(film_reflectance_excess_exact(film_index_of(a), film_index_of(b))).margin(1e-6));
+  // Between the nodes, the lookup (a cell's largest corner) still bounds what the film reflects
+  // above F(θ, η_c), at any thickness and angle (checked against the double-precision reference).
+  for (const auto& [nf, eta] : {std::pair{1.83, 1.47}, {1.31, 1.52}, {2.37, 1.12}}) {
+    const double eta_c = film_coupling_index(float(nf), float(eta));
+    const double x = film_reflectance_excess(float(nf), float(eta));
+    double worst = -1;
+    for (int j = 0; j <= 90; ++j)
+      for (double d = 0; d <= 1200; d += 10) {
+        const double c = std::cos(j * 3.14159265358979323846 / 180);
+        worst = std::max(worst, tmm(c, 550, d, 1, nf, eta) - fresnel_dielectric(float(c), float(eta_c)));
+      }
+    CHECK(worst <= x + 1e-4);
+  }
 }

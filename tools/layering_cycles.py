@@ -1,0 +1,152 @@
+#!/usr/bin/env python3
+"""Why the clear-coated and sheen assets render darker in Prism than in Cycles (issue 12), on the
+smallest scene that shows it: a Lambertian plane (glTF base colour ρ, specularFactor 0) under a
+uniform white environment, seen straight on by an orthographic camera, bare, under a smooth clear
+coat (factor 1, index 1.5), under a sheen (colour 1, roughness 0.5) and under the base's own
+specular layer (specularFactor 1; the others have 0), each with ρ = 0.5 and ρ = 0.
+Renders them with Prism and with Blender 3.4 Cycles (the harness in ../shared/tools/cycles, which
+scales Principled v1's clearcoat by 4 to undo its 0.25) and separates each layer into:
+
+  the layer's own reflection        L(layer, ρ = 0)
+  what the base keeps under it      (L(layer, ρ) − L(layer, 0)) / L(bare, ρ)
+
+The model difference it shows: KHR_materials_clearcoat and _sheen layer the base under the top
+lobe, which lets through only what it does not reflect. Prism scales the base by the coat's
+transmittance on the way in and out, (1 − c E_c(μ_o))(1 − c E_c(μ_i)) (a smooth coat: E_c = F,
+so the base keeps (1 − F(1))(1 − F_avg) = 0.872 of its light seen straight on, η = 1.5), and by
+1 − s E_sheen under a sheen. Cycles 3.4's Principled v1 adds its clearcoat lobe on top of an
+undimmed base, and Blender's importer adds a Velvet BSDF (Ashikhmin's, not the Charlie sheen) to the
+Principled BSDF with an Add Shader: the base keeps 1.000 of its light under both. The layers' own
+reflections agree for the coat (F(1) = 0.04 in both) and differ for the sheen (the two fibre
+distributions). The same holds, smaller, for the base's own specular layer (specularFactor 1):
+Prism's diffuse keeps 1 − E(μ_o) of its light under it, Cycles' all of it; but at roughness 1 that
+layer's own reflection in Prism is several times Cycles' (compensated GGX against Cycles 3.4's
+single-scattering one), so it does not explain SpecularTest's darker Prism image.
+
+    tools/layering_cycles.py [--spp 64] [--size 32] [--out out/layering_cycles]
+
+Skips (exit 0) without ../shared or Blender.
+"""
+import argparse
+import base64
+import json
+import os
+import shutil
+import struct
+import subprocess
+import sys
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ETA = 1.5  # the clear coat's index (KHR_materials_clearcoat)
+
+
+def scene(rho, layer):
+    """A 2 m square at z = 0 facing +z, filling an orthographic camera's view from z = 1."""
+    p = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
+    blob = struct.pack("<12f", *[c for v in p for c in v]) + struct.pack("<12f", *[0, 0, 1] * 4) + \
+        struct.pack("<6I", 0, 1, 2, 0, 2, 3)
+    extensions = {"KHR_materials_specular": {"specularFactor": 1.0 if layer == "specular" else 0.0}}
+    if layer == "coat":
+        extensions["KHR_materials_clearcoat"] = {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.0}
+    elif layer == "sheen":
+        extensions["KHR_materials_sheen"] = {"sheenColorFactor": [1.0, 1.0, 1.0], "sheenRoughnessFactor": 0.5}
+    material = {"name": "plane", "extensions": extensions,
+                "pbrMetallicRoughness": {"baseColorFactor": [rho, rho, rho, 1], "metallicFactor": 0, "roughnessFactor": 1}}
+    return {
+        "asset": {"version": "2.0", "generator": "tools/layering_cycles.py"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 0, 1]}],
+        "cameras": [{"type": "orthographic", "orthographic": {"xmag": 0.5, "ymag": 0.5, "znear": 0.01, "zfar": 10}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2, "material": 0}]}],
+        "materials": [material],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                       "min": [-1, -1, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+                      {"bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR"}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+                        {"buffer": 0, "byteOffset": 96, "byteLength": 24}],
+        "buffers": [{"byteLength": len(blob),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}],
+        "extensionsUsed": list(extensions)}
+
+
+def fresnel(c, eta):
+    """Unpolarised Fresnel reflectance of a dielectric of relative index eta at cos θ = c."""
+    s2 = (1 - c * c) / eta ** 2
+    ct = (1 - s2) ** 0.5
+    rs, rp = (c - eta * ct) / (c + eta * ct), (eta * c - ct) / (eta * c + ct)
+    return (rs * rs + rp * rp) / 2
+
+
+def fresnel_average(eta, n=100000):
+    """F_avg = 2 ∫ F(μ) μ dμ, by the midpoint rule."""
+    return sum(2 * fresnel((k + 0.5) / n, eta) * (k + 0.5) / n for k in range(n)) / n
+
+
+def mean_y(exrstats, path):
+    img = exrstats.read_exr(path)
+    names = exrstats.rgb_names(list(img["channels"]))
+    luma = (0.2126, 0.7152, 0.0722)
+    chans = [img["channels"][n] for n in names]
+    return sum(w * sum(c) / len(c) for w, c in zip(luma, chans))
+
+
+def render(a, exrstats, rho, layer):
+    work = os.path.join(a.out, "%s_%g" % (layer, rho))
+    os.makedirs(work, exist_ok=True)
+    gltf = os.path.join(work, "plane.gltf")
+    with open(gltf, "w") as f:
+        json.dump(scene(rho, layer), f, indent=1)
+    common = ["--spp", str(a.spp), "--width", str(a.size), "--height", str(a.size), "--threads", str(a.threads)]
+    prism_exr, cycles_exr = os.path.join(work, "prism.exr"), os.path.join(work, "cycles.exr")
+    subprocess.run([a.prism, "render", gltf, "-o", prism_exr, "-q", "--env", "1,1,1", "--max-depth", "4"] + common,
+                   check=True, stdout=subprocess.DEVNULL)
+    r = subprocess.run([os.path.join(a.harness, "render_gltf.sh"), "--in", gltf, "--out", cycles_exr, "--env", "1,1,1",
+                        "--max-bounces", "3", "--filter", "box", "--filter-width", "1"] + common,
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if r.returncode != 0:
+        sys.exit("layering_cycles: Cycles failed; log: %s.log" % cycles_exr)
+    return mean_y(exrstats, prism_exr), mean_y(exrstats, cycles_exr)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--spp", type=int, default=64)
+    ap.add_argument("--size", type=int, default=32, help="image width and height (default 32)")
+    ap.add_argument("--rho", type=float, default=0.5, help="the base colour's grey (default 0.5)")
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--out", default=os.path.join(REPO, "out", "layering_cycles"))
+    ap.add_argument("--shared", default=os.path.join(os.path.dirname(REPO), "shared"))
+    ap.add_argument("--prism", default=os.path.join(REPO, "build", "apps", "prism"))
+    a = ap.parse_args()
+    a.harness = os.path.join(a.shared, "tools", "cycles")
+    if not os.path.isfile(os.path.join(a.harness, "render_gltf.sh")):
+        print("layering_cycles: SKIPPED: %s (the Cycles harness) not found" % a.harness)
+        return 0
+    if shutil.which("blender") is None:
+        print("layering_cycles: SKIPPED: Blender not found")
+        return 0
+    sys.path.insert(0, a.harness)
+    sys.dont_write_bytecode = True
+    import exrstats
+
+    f0, f_avg = fresnel(1.0, ETA), fresnel_average(ETA)
+    print("Lambertian plane ρ = %g under a white environment, seen straight on; %d spp, %dx%d; image means (Y)."
+          % (a.rho, a.spp, a.size, a.size))
+    bare = render(a, exrstats, a.rho, "bare")
+    print("%-7s %-34s %9s %9s %s" % ("layer", "quantity", "Prism", "Cycles", "model"))
+    print("%-7s %-34s %9.4f %9.4f ρ = %g (Cycles: Burley's diffuse)" % ("none", "L(bare, ρ)", *bare, a.rho))
+    for layer in ("coat", "sheen", "specular"):
+        alone, under = render(a, exrstats, 0.0, layer), render(a, exrstats, a.rho, layer)
+        kept = [(u - o) / b for u, o, b in zip(under, alone, bare)]
+        own = {"coat": "F(1) = %.4f in both" % f0, "sheen": "Charlie (Prism) vs Ashikhmin's velvet (Cycles)",
+               "specular": "the base's own GGX layer (roughness 1)"}[layer]
+        keeps = {"coat": "glTF layering (1 − F(1))(1 − F_avg) = %.4f; additive (Cycles v1) 1" % ((1 - f0) * (1 - f_avg)),
+                 "sheen": "glTF layering 1 − s E_sheen < 1; additive (Add Shader) 1",
+                 "specular": "coupled diffuse 1 − E(1) < 1; additive (Cycles v1) 1"}[layer]
+        print("%-7s %-34s %9.4f %9.4f %s" % (layer, "own reflection L(layer, 0)", *alone, own))
+        print("%-7s %-34s %9.4f %9.4f %s" % (layer, "base kept (L(layer,ρ) − L(layer,0))/L", *kept, keeps))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
