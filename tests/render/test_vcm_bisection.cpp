@@ -5,8 +5,9 @@
 // It bisects VCM's open 1.7% offset against BDPT (README, docs/bidirectional); e.g.
 //   VARIANT=1 SPP=128 SEEDS=12 build/tests/tests_render "[vcm-bisection]"
 // VARIANT bits: 1 prism of constant index, 2 prism diffuse, 4 emitter without its glossy coat,
-// 8 floor and wall black. I1, I2: the integrators (IntegratorKind order: 0 path, 2 bdpt, 3 vcm,
-// 4 light; −1 none). Also W, SPP, SEEDS, DEPTH, WL (wavelengths), RADIUS (0: default).
+// 8 floor and wall black, 16 prism lowered 1 mm onto the floor (its base coincident with the floor,
+// as the scene had it until the offset was found to come from there). I1, I2: the integrators (IntegratorKind order: 0
+// path, 2 bdpt, 3 vcm, 4 light; −1 none). Also W, SPP, SEEDS, DEPTH, WL (wavelengths), RADIUS (0: default).
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <cstdlib>
@@ -40,6 +41,10 @@ TEST_CASE("vcm against bdpt on the dispersive prism: image means over seeds", "[
     }
     if ((m.name == "floor" || m.name == "wall") && (variant & 8)) m = test::diffuse({0, 0, 0}, m.name);
   }
+  if (variant & 16)
+    for (Mesh& mesh : scene.meshes)
+      if (mesh.name == "prism")
+        for (Vec3f& p : mesh.positions) p.y -= 1e-3f;
   const int W = env_int("W", 64), spp = env_int("SPP", 64), seeds = env_int("SEEDS", 8), depth = env_int("DEPTH", 16);
   const char* integrators[] = {"path", "whitted", "bdpt", "vcm", "light"};
   for (int integ : {env_int("I1", 2), env_int("I2", 3)}) {
