@@ -26,6 +26,7 @@ BEAM_Y = 0.06     # height of the beam over the table
 LAMP_DISTANCE = 0.5
 SLIT = (0.003, 0.04)  # width, height (m), 0.45 m from the lamp
 SCREEN_DISTANCE = 0.8
+LIFT = 0.001      # the prism stands 1 mm over the table: no two surfaces coincide
 
 TABLE = lambert("table", (0.35, 0.35, 0.35))
 SCREEN = lambert("screen", (0.85, 0.85, 0.85))
@@ -56,8 +57,8 @@ LAMP = add(ENTRY, scale(IN, -LAMP_DISTANCE))
 UP = (0.0, 1.0, 0.0)
 
 def prism_solid():
-    bottom = [(x, 0.0, z) for x, z in TRIANGLE]
-    top = [(x, HEIGHT, z) for x, z in TRIANGLE]
+    bottom = [(x, LIFT, z) for x, z in TRIANGLE]
+    top = [(x, LIFT + HEIGHT, z) for x, z in TRIANGLE]
     sides = [[bottom[i], bottom[(i + 1) % 3], top[(i + 1) % 3], top[i]] for i in range(3)]
     return convex_solid([bottom, top] + sides)
 
