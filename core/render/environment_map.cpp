@@ -50,7 +50,12 @@ EnvironmentMap::EnvironmentMap(const EnvironmentMapDesc& desc)
   // (each corner the mean of four texels), so that every direction the lookup makes bright has
   // a non-zero pdf; times sin θ, the solid angle of a lat-long texel per unit of (u, v).
   const auto at = [&](int x, int y) { return lum[size_t(std::clamp(y, 0, h - 1)) * w + (x + w) % w]; };
-  const auto corner = [&](int x, int y) { return (at(x - 1, y - 1) + at(x, y - 1) + at(x - 1, y) + at(x, y)) / 4; };
+  // corners[y·w + x]: the grid point at the top left of texel (x, y); columns wrap, so w per row.
+  std::vector<float> corners(size_t(w) * (h + 1));
+  for (int y = 0; y <= h; ++y)
+    for (int x = 0; x < w; ++x)
+      corners[size_t(y) * w + x] = (at(x - 1, y - 1) + at(x, y - 1) + at(x - 1, y) + at(x, y)) / 4;
+  const auto corner = [&](int x, int y) { return corners[size_t(y) * w + x % w]; };
   std::vector<float> weights(size_t(w) * h);
   double integral = 0;
   for (int y = 0; y < h; ++y) {

@@ -91,6 +91,46 @@ void write_png(const std::filesystem::path& file, int width, int height, const s
 
 namespace {
 
+// The highest ratio of pixel bytes to file bytes each OpenEXR compression can reach: RLE
+// stores a run of 128 bytes in 2; deflate (ZIP, ZIPS) at most 1032:1, PXR24 deflates 24 of
+// each 32 bits; B44 keeps a flat 4×4 block of halves (32 bytes) in 3. PIZ and DWA have no
+// simple bound and get deflate after RLE (64 · 1032).
+double best_compression_ratio(Imf::Compression c) {
+  switch (c) {
+    case Imf::NO_COMPRESSION:
+      return 1;
+    case Imf::RLE_COMPRESSION:
+      return 64;
+    case Imf::ZIPS_COMPRESSION:
+    case Imf::ZIP_COMPRESSION:
+      return 1032;
+    case Imf::PXR24_COMPRESSION:
+      return 1032 * 4 / 3.;
+    case Imf::B44_COMPRESSION:
+    case Imf::B44A_COMPRESSION:
+      return 32 / 3.;
+    default:
+      return 64 * 1032;
+  }
+}
+
+// OpenEXR 3.1 fills a chunk whose stored data is shorter than its lines with zeros, so a
+// 700-byte file can claim 40 million pixels; refuse, before allocating, a file with missing
+// chunks or fewer bytes than its pixels need under its compression's best ratio.
+void check_exr_holds_its_pixels(const std::filesystem::path& file, const Imf::InputFile& in) {
+  if (!in.isComplete()) fail("{}: the OpenEXR file is incomplete (chunks are missing)", file.string());
+  const Imath::Box2i dw = in.header().dataWindow();
+  double bytes_per_pixel = 0;
+  for (auto c = in.header().channels().begin(); c != in.header().channels().end(); ++c)
+    bytes_per_pixel +=
+        (c.channel().type == Imf::HALF ? 2. : 4.) / (double(c.channel().xSampling) * c.channel().ySampling);
+  const double pixel_bytes = bytes_per_pixel * (double(dw.max.x) - dw.min.x + 1) * (double(dw.max.y) - dw.min.y + 1);
+  const double file_bytes = double(std::filesystem::file_size(file));
+  if (pixel_bytes > file_bytes * best_compression_ratio(in.header().compression()))
+    fail("{}: the OpenEXR pixel data is cut short ({:.0f} bytes cannot hold {:.0f} bytes of pixels)", file.string(),
+         file_bytes, pixel_bytes);
+}
+
 // Reads the named channels as floats, planar (one plane per name, top row first).
 struct ExrPlanes {
   int width, height;
@@ -103,6 +143,7 @@ ExrPlanes read_exr_planes(const std::filesystem::path& file, const std::vector<s
       if (!in.header().channels().findChannel(name)) throw std::runtime_error("it has no channel " + name);
     const Imath::Box2i dw = in.header().dataWindow();
     check_image_size(file, int64_t(dw.max.x) - dw.min.x + 1, int64_t(dw.max.y) - dw.min.y + 1);
+    check_exr_holds_its_pixels(file, in);
     ExrPlanes img{dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, {}};
     const size_t pixels = size_t(img.width) * img.height;
     img.planes.resize(pixels * names.size());
@@ -115,6 +156,8 @@ ExrPlanes read_exr_planes(const std::filesystem::path& file, const std::vector<s
     in.setFrameBuffer(fb);
     in.readPixels(dw.min.y, dw.max.y);
     return img;
+  } catch (const Error&) {
+    throw;
   } catch (const std::exception& e) {
     fail("{}: cannot read OpenEXR image: {}", file.string(), e.what());
   }

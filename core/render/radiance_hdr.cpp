@@ -63,6 +63,12 @@ RgbImage read_hdr(const std::filesystem::path& file) {
   if (!(size_line >> y_axis >> height >> x_axis >> width) || y_axis != "-Y" || x_axis != "+X")
     fail("{}: Radiance HDR resolution line must read '-Y height +X width'", name);
   check_image_size(file, width, height);
+  // The fewest bytes the scanlines can take, flat (4 per pixel) or run-length encoded (a 4-byte
+  // head, then per component a 2-byte run for every 127 pixels): checked before allocating.
+  const int64_t shortest_scanline = std::min<int64_t>(4 * width, 4 + 4 * 2 * ((width + 126) / 127));
+  if (int64_t(bytes.size() - r.at) < height * shortest_scanline)
+    fail("{}: Radiance HDR pixel data is cut short ({} bytes for a {}x{} image)", name, bytes.size() - r.at, width,
+         height);
 
   RgbImage img;
   img.width = int(width);

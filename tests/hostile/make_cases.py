@@ -106,6 +106,27 @@ def png(width, height, pixels=True):
     return b"\x89PNG\r\n\x1a\n" + header + body + chunk(b"IEND", b"")
 
 
+def exr(width, height, chunk_bytes, compression=0, offsets=True):
+    """A scanline OpenEXR file of float R, G, B whose chunks each store chunk_bytes zero bytes,
+    whatever their lines need (OpenEXR 3.1 zero-fills a short chunk); offsets=False leaves the
+    line offset table empty (every chunk missing)."""
+
+    def attr(name, kind, data):
+        return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(data)) + data
+
+    channels = b"".join(c + b"\0" + struct.pack("<iBBBBii", 2, 0, 0, 0, 0, 1, 1) for c in (b"B", b"G", b"R")) + b"\0"
+    box = struct.pack("<4i", 0, 0, width - 1, height - 1)
+    header = (attr("channels", "chlist", channels) + attr("compression", "compression", bytes([compression]))
+              + attr("dataWindow", "box2i", box) + attr("displayWindow", "box2i", box)
+              + attr("lineOrder", "lineOrder", b"\0") + attr("pixelAspectRatio", "float", struct.pack("<f", 1))
+              + attr("screenWindowCenter", "v2f", struct.pack("<2f", 0, 0))
+              + attr("screenWindowWidth", "float", struct.pack("<f", 1)) + b"\0")
+    start = 8 + len(header) + 8 * height
+    chunks = b"".join(struct.pack("<ii", y, chunk_bytes) + b"\0" * chunk_bytes for y in range(height))
+    table = b"".join(struct.pack("<Q", start + y * (8 + chunk_bytes) if offsets else 0) for y in range(height))
+    return b"\x76\x2f\x31\x01" + struct.pack("<I", 2) + header + table + chunks
+
+
 def textured(g, image):
     g = copy.deepcopy(g)
     g["images"] = [image]
@@ -452,6 +473,19 @@ def build_cases():
               extra_files={"sky.hdr": b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 100000\n"},
               args=RENDER + ["--env-map", "{dir}/sky.hdr"], mention=["100000x100000"])
     gltf_case("env_1e6", "rendered", B(), args=RENDER + ["--env", "1e6,1e6,1e6"])
+    # Found by fuzz_env_map: chunks of 4 bytes for lines of 24 MB, read as 40 million zero pixels.
+    for compression, kind in ((0, "none"), (1, "rle")):
+        gltf_case(f"env_map_exr_short_chunks_{kind}", "refused", B(),
+                  extra_files={"sky.exr": exr(2000000, 20, 4, compression)},
+                  args=RENDER + ["--env-map", "{dir}/sky.exr"], mention=["sky.exr", "cut short"])
+    gltf_case("env_map_exr_missing_chunks", "refused", B(),
+              extra_files={"sky.exr": exr(200000, 400, 0, offsets=False)},
+              args=RENDER + ["--env-map", "{dir}/sky.exr"], mention=["sky.exr", "incomplete"])
+    gltf_case("env_map_exr_valid", "rendered", B(), extra_files={"sky.exr": exr(4, 2, 48)},
+              args=RENDER + ["--env-map", "{dir}/sky.exr"])
+    gltf_case("env_map_hdr_claims_more", "refused", B(),
+              extra_files={"sky.hdr": b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8000 +X 16000\n" + bytes(64)},
+              args=RENDER + ["--env-map", "{dir}/sky.hdr"], mention=["sky.hdr", "cut short"])
 
 
 def write(outdir):
