@@ -25,6 +25,19 @@ float bsdf_pdf(const Bsdf<N>& b, const Vec3f& wo, const Vec3f& wi) {
   return std::visit([&](const auto& lobe) { return lobe.pdf(wo, wi); }, b);
 }
 
+// f and pdf together: one pass where a lobe shares their work (eval), else the two calls.
+template <int N>
+BsdfEval<N> bsdf_eval(const Bsdf<N>& b, const Vec3f& wo, const Vec3f& wi) {
+  return std::visit(
+      [&](const auto& lobe) {
+        if constexpr (requires { lobe.eval(wo, wi); })
+          return lobe.eval(wo, wi);
+        else
+          return BsdfEval<N>{lobe.f(wo, wi), lobe.pdf(wo, wi)};
+      },
+      b);
+}
+
 template <int N>
 std::optional<BsdfSample<N>> bsdf_sample_f(const Bsdf<N>& b, const Vec3f& wo, float uc, Vec2f u) {
   return std::visit([&](const auto& lobe) { return lobe.sample_f(wo, uc, u); }, b);

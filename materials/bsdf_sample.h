@@ -23,6 +23,14 @@ struct BsdfSample {
   float eta = 1;  // relative index crossed by a refraction (1 otherwise)
 };
 
+// A BSDF's value and sampling density at one pair of directions, computed together where they
+// share their work (a half vector, a Fresnel reflectance).
+template <int N>
+struct BsdfEval {
+  SampledSpectrum<N> f;
+  float pdf;
+};
+
 // One delta direction of a BSDF and the share of light it carries (f·|cos θ_i| with the delta
 // integrated out), for tracers that follow every specular branch.
 template <int N>

@@ -114,26 +114,22 @@ class DielectricBsdf {
   }
 
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
-    if (!compensate_) return single_scattering(wo, wi);
-    if constexpr (Extensions)
-      if (lanes_ && lanes_->eta) {  // each lane's reflectance follows its own index: so does its E
-        SampledSpectrum<N> f = single_scattering(wo, wi);
-        for (int i = 0; i < N; ++i) f[i] /= single_scattering_albedo(wo.z, (*lanes_->eta)[i]);
-        return f;
-      }
-    return single_scattering(wo, wi) / single_scattering_albedo(wo.z, eta_);
+    const auto h = half_vector(wo, wi);
+    return h ? f(wo, wi, *h, fresnel(dot(wo, h->wm))) : SampledSpectrum<N>(0.f);
   }
 
   float pdf(const Vec3f& wo, const Vec3f& wi) const {
     const auto h = half_vector(wo, wi);
-    if (!h) return 0.f;
-    const float R = selection(dot(wo, h->wm)), T = transmission_ * (1 - R);
-    if (R + T <= 0) return 0.f;
-    const float Dv = distribution_.D_visible(wo, h->wm);
-    if (h->reflection) return Dv / (4 * abs_dot(wo, h->wm)) * R / (R + T);
-    if (thin_) return Dv / (4 * abs_dot(wo, h->wm)) * T / (R + T);
-    const float dwm_dwi = abs_dot(wi, h->wm) / sqr(dot(wi, h->wm) + dot(wo, h->wm) / h->eta_p);
-    return Dv * dwm_dwi * T / (R + T);
+    return h ? pdf(wo, wi, *h, selection(dot(wo, h->wm))) : 0.f;
+  }
+
+  // f and pdf with one half vector and one Fresnel reflectance.
+  BsdfEval<N> eval(const Vec3f& wo, const Vec3f& wi) const {
+    const auto h = half_vector(wo, wi);
+    if (!h) return {SampledSpectrum<N>(0.f), 0.f};
+    const float c = dot(wo, h->wm);
+    const SampledSpectrum<N> F = fresnel(c);
+    return {f(wo, wi, *h, F), pdf(wo, wi, *h, selection(c, F))};
   }
 
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
@@ -160,9 +156,9 @@ class DielectricBsdf {
       eta_p = refraction->eta_p;
       transmitted = true;
     }
-    const float p = pdf(wo, wi);
-    if (!(p > 0)) return std::nullopt;
-    return BsdfSample<N>{f(wo, wi), wi, p, false, transmitted, eta_p};
+    const BsdfEval<N> e = eval(wo, wi);
+    if (!(e.pdf > 0)) return std::nullopt;
+    return BsdfSample<N>{e.f, wi, e.pdf, false, transmitted, eta_p};
   }
 
  private:
@@ -171,6 +167,37 @@ class DielectricBsdf {
     bool reflection;
     float eta_p;
   };
+
+  // f at the half vector h with the Fresnel reflectance F there, compensated (see the header).
+  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, const SampledSpectrum<N>& F) const {
+    if (!compensate_) return single_scattering(wo, wi, h, F);
+    if constexpr (Extensions)
+      if (lanes_ && lanes_->eta) {  // each lane's reflectance follows its own index: so does its E
+        SampledSpectrum<N> f = single_scattering(wo, wi, h, F);
+        for (int i = 0; i < N; ++i) f[i] /= single_scattering_albedo(wo.z, (*lanes_->eta)[i]);
+        return f;
+      }
+    return single_scattering(wo, wi, h, F) / single_scattering_albedo(wo.z, eta_);
+  }
+
+  // The selection share from the reflectance F at the same facet: without per-lane reflectance,
+  // every lane of F is that share.
+  float selection(float cos_theta, const SampledSpectrum<N>& F) const {
+    if constexpr (Extensions)
+      if (lanes_) return selection(cos_theta);
+    return F[0];
+  }
+
+  // pdf at the half vector h, with R the selection share there.
+  float pdf(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, float R) const {
+    const float T = transmission_ * (1 - R);
+    if (R + T <= 0) return 0.f;
+    const float Dv = distribution_.D_visible(wo, h.wm);
+    if (h.reflection) return Dv / (4 * abs_dot(wo, h.wm)) * R / (R + T);
+    if (thin_) return Dv / (4 * abs_dot(wo, h.wm)) * T / (R + T);
+    const float dwm_dwi = abs_dot(wi, h.wm) / sqr(dot(wi, h.wm) + dot(wo, h.wm) / h.eta_p);
+    return Dv * dwm_dwi * T / (R + T);
+  }
 
   // The microfacet normal that takes wo to wi (facing +z), or nothing for a smooth surface,
   // grazing directions, or normals that face away from either direction.
@@ -186,20 +213,18 @@ class DielectricBsdf {
     return HalfVector{wm, reflection, eta_p};
   }
 
-  SampledSpectrum<N> single_scattering(const Vec3f& wo, const Vec3f& wi) const {
-    const auto h = half_vector(wo, wi);
-    if (!h) return SampledSpectrum<N>(0.f);
-    const SampledSpectrum<N> F = fresnel(dot(wo, h->wm));
-    const float D = distribution_.D(h->wm);
-    if (h->reflection) return F * (D * distribution_.G(wo, wi) / std::abs(4 * wi.z * wo.z));
+  SampledSpectrum<N> single_scattering(const Vec3f& wo, const Vec3f& wi, const HalfVector& h,
+                                       const SampledSpectrum<N>& F) const {
+    const float D = distribution_.D(h.wm);
+    if (h.reflection) return F * (D * distribution_.G(wo, wi) / std::abs(4 * wi.z * wo.z));
     const SampledSpectrum<N> T = tint_ * (SampledSpectrum<N>(1.f) - F);
     if (thin_) {
       const Vec3f mirrored(wi.x, wi.y, -wi.z);
       return T * (transmission_ * D * distribution_.G(wo, mirrored) / std::abs(4 * wi.z * wo.z));
     }
-    const float denom = sqr(dot(wi, h->wm) + dot(wo, h->wm) / h->eta_p) * wi.z * wo.z;
-    const float ft = D * distribution_.G(wo, wi) * std::abs(dot(wi, h->wm) * dot(wo, h->wm) / denom);
-    return T * (transmission_ * ft / sqr(h->eta_p));
+    const float denom = sqr(dot(wi, h.wm) + dot(wo, h.wm) / h.eta_p) * wi.z * wo.z;
+    const float ft = D * distribution_.G(wo, wi) * std::abs(dot(wi, h.wm) * dot(wo, h.wm) / denom);
+    return T * (transmission_ * ft / sqr(h.eta_p));
   }
 
   // E(μ_o) of the white lossless lobes on wo's side (see the header).

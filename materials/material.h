@@ -42,6 +42,9 @@ struct SurfacePoint {
   std::array<Vec2f, 2> uv{};                      // TEXCOORD_0, TEXCOORD_1
   std::array<float, 4> vertex_color{1, 1, 1, 1};  // COLOR_0 (RGBA), white when absent
   Vec3f coat_normal{0, 0, 1};                     // a clear coat's own normal, in the shading frame
+  // The base colour's spectrum when neither a texture nor vertex colours vary it: upsampled once
+  // per material (World), not at every hit. Null: upsampled from the inputs here.
+  const RgbAlbedoSpectrum* base_color_spectrum = nullptr;
 };
 
 // A PbrMaterial's parameters at one surface point: factor × texture × vertex colour. The
@@ -198,7 +201,7 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
   // Local x is the direction of anisotropy (the shading frame follows it): α_x = mix(α, 1, s²).
   const TrowbridgeReitz distribution(p.anisotropy > 0 ? lerp(sqr(p.anisotropy), alpha, 1.f) : alpha, alpha);
   SampledSpectrum<N> n_front(1.f), color;  // the front medium's index; the base colour
-  const RgbAlbedoSpectrum base(p.base_color);
+  const RgbAlbedoSpectrum base = at.base_color_spectrum ? *at.base_color_spectrum : RgbAlbedoSpectrum(p.base_color);
   for (int i = 0; i < N; ++i) {
     if (front) n_front[i] = ior(front->ior, lambda[i]);
     if (p.metallic < 1 || !material.metal) color[i] = base(lambda[i]);

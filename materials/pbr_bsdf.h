@@ -90,24 +90,12 @@ class PbrBsdf {
     return d;
   }
 
-  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
-    if (flips(wo)) return f(-wo, -wi);
-    SampledSpectrum<N> r(0.f);  // lobes of weight 0 are not evaluated (most materials are not half metal)
-    if (metallic_ > 0) r += metal_.f(wo, wi) * metallic_;
-    if (metallic_ < 1) r += dielectric_.f(wo, wi) * (1 - metallic_);
-    if (diffuse_weight() <= 0) return r;
-    if (same_hemisphere(wo, wi)) {
-      r += albedo_ * (coupling(wo, wi) * (diffuse_weight() * (1 - diffuse_transmission()) * kInvPi));
-    } else if constexpr (Extensions) {
-      if (diffuse_transmission() > 0)
-        r += extras_->transmitted_albedo * (coupling(wo, wi) * (diffuse_weight() * diffuse_transmission() * kInvPi));
-    }
-    return r;
-  }
-
-  float pdf(const Vec3f& wo, const Vec3f& wi) const {
-    if (flips(wo)) return pdf(-wo, -wi);
-    return mixture_pdf(wo, wi, lobe_probabilities(wo));
+  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const { return eval(wo, wi).f; }
+  float pdf(const Vec3f& wo, const Vec3f& wi) const { return eval(wo, wi).pdf; }
+  BsdfEval<N> eval(const Vec3f& wo, const Vec3f& wi) const {
+    if (flips(wo)) return eval(-wo, -wi);
+    const float e_o = E(wo.z);
+    return mixture(wo, wi, lobe_probabilities(e_o), e_o);
   }
 
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
@@ -116,24 +104,30 @@ class PbrBsdf {
       if (s) s->wi = -s->wi;
       return s;
     }
-    const auto p = lobe_probabilities(wo);
+    const float e_o = E(wo.z);
+    const auto p = lobe_probabilities(e_o);
     std::optional<BsdfSample<N>> s;
+    BsdfEval<N> e;
     if (uc < p[0]) {
       s = metal_.sample_f(wo, uc / p[0], u);
-      if (s && s->specular) return scaled(*s, metallic_, p[0]);
+      if (!s) return std::nullopt;
+      if (s->specular) return scaled(*s, metallic_, p[0]);
+      e = mixture(wo, s->wi, p, e_o, Sampled{0, {s->f, s->pdf}});
     } else if (uc < p[0] + p[1]) {
       s = dielectric_.sample_f(wo, std::min((uc - p[0]) / p[1], 0.99999994f), u);
-      if (s && s->specular) return scaled(*s, 1 - metallic_, p[1]);
+      if (!s) return std::nullopt;
+      if (s->specular) return scaled(*s, 1 - metallic_, p[1]);
+      e = mixture(wo, s->wi, p, e_o, Sampled{1, {s->f, s->pdf}});
     } else {  // the diffuse base: reflected (p[2]) or transmitted to the far side (p[3])
       const bool far_side = Extensions && uc >= 1 - p[3];
       Vec3f wi = sample_cosine_hemisphere(u);
       if ((wo.z < 0) != far_side) wi.z = -wi.z;
       s = BsdfSample<N>{{}, wi, 0.f, false, far_side};
+      e = mixture(wo, wi, p, e_o);
     }
-    if (!s) return std::nullopt;
-    s->f = f(wo, s->wi);
-    s->pdf = mixture_pdf(wo, s->wi, p);
-    if (!(s->pdf > 0)) return std::nullopt;
+    if (!(e.pdf > 0)) return std::nullopt;
+    s->f = e.f;
+    s->pdf = e.pdf;
     return s;
   }
 
@@ -154,15 +148,16 @@ class PbrBsdf {
   float E(float mu) const {
     return specular_ * SpecularAlbedo::table().E(std::abs(mu), roughness_, eta_, compensated_);
   }
-  // The coupling factor (1 − E(μ_o))(1 − E(μ_i)) / (1 − E_avg): one value, or one per lane.
-  float scalar_coupling(const Vec3f& wo, const Vec3f& wi) const {
-    return e_avg_ < 1 ? (1 - E(wo.z)) * (1 - E(wi.z)) / (1 - e_avg_) : 0.f;
+  // The coupling factor (1 − E(μ_o))(1 − E(μ_i)) / (1 − E_avg): one value, or one per lane;
+  // e_o = E(μ_o), found with the lobe probabilities.
+  float scalar_coupling(float e_o, const Vec3f& wi) const {
+    return e_avg_ < 1 ? (1 - e_o) * (1 - E(wi.z)) / (1 - e_avg_) : 0.f;
   }
-  auto coupling(const Vec3f& wo, const Vec3f& wi) const {
+  auto coupling(const Vec3f& wo, float e_o, const Vec3f& wi) const {
     if constexpr (!Extensions) {
-      return scalar_coupling(wo, wi);
+      return scalar_coupling(e_o, wi);
     } else {
-      if (!extras_ || !extras_->lanes) return SampledSpectrum<N>(scalar_coupling(wo, wi));
+      if (!extras_ || !extras_->lanes) return SampledSpectrum<N>(scalar_coupling(e_o, wi));
       const LaneCoupling& lanes = *extras_->lanes;
       const SpecularAlbedo& table = SpecularAlbedo::table();
       // μ_o and μ_i found on the tables once, for all the lanes' indices.
@@ -183,22 +178,53 @@ class PbrBsdf {
     }
   }
 
-  // Σ (probability of lobe) × (its pdf), for the probabilities of wo (not flipped).
-  float mixture_pdf(const Vec3f& wo, const Vec3f& wi, const std::array<float, 4>& p) const {
-    float r = 0;
-    if (p[0] > 0) r += p[0] * metal_.pdf(wo, wi);
-    if (p[1] > 0) r += p[1] * dielectric_.pdf(wo, wi);
-    if (same_hemisphere(wo, wi))
-      r += p[2] * cosine_hemisphere_pdf(abs_cos_theta(wi));
-    else if constexpr (Extensions)
-      r += p[3] * cosine_hemisphere_pdf(abs_cos_theta(wi));
+  // The lobe (0 the metal, 1 the dielectric) a non-delta sample came from, with its own f and pdf.
+  struct Sampled {
+    int lobe;
+    BsdfEval<N> eval;
+  };
+
+  // f and Σ (probability of lobe) × (its pdf), for wo (not flipped), the probabilities p of wo and
+  // e_o = E(μ_o); the lobe a sample came from is not evaluated again. Lobes of weight 0 are not
+  // evaluated (most materials are not half metal).
+  BsdfEval<N> mixture(const Vec3f& wo, const Vec3f& wi, const std::array<float, 4>& p, float e_o,
+                      const std::optional<Sampled>& sampled = {}) const {
+    const auto lobe = [&](int i, const auto& bsdf) {
+      if (sampled && sampled->lobe == i) return sampled->eval;
+      if constexpr (requires { bsdf.eval(wo, wi); })
+        return bsdf.eval(wo, wi);
+      else
+        return BsdfEval<N>{bsdf.f(wo, wi), bsdf.pdf(wo, wi)};
+    };
+    BsdfEval<N> r{SampledSpectrum<N>(0.f), 0.f};
+    if (metallic_ > 0) {
+      const BsdfEval<N> m = lobe(0, metal_);
+      r.f += m.f * metallic_;
+      if (p[0] > 0) r.pdf += p[0] * m.pdf;
+    }
+    if (metallic_ < 1) {
+      const BsdfEval<N> d = lobe(1, dielectric_);
+      r.f += d.f * (1 - metallic_);
+      if (p[1] > 0) r.pdf += p[1] * d.pdf;
+    }
+    const float cosine_pdf = cosine_hemisphere_pdf(abs_cos_theta(wi));
+    if (same_hemisphere(wo, wi)) {
+      r.pdf += p[2] * cosine_pdf;
+      if (diffuse_weight() > 0)
+        r.f += albedo_ * (coupling(wo, e_o, wi) * (diffuse_weight() * (1 - diffuse_transmission()) * kInvPi));
+    } else if constexpr (Extensions) {
+      r.pdf += p[3] * cosine_pdf;
+      if (diffuse_weight() > 0 && diffuse_transmission() > 0)
+        r.f += extras_->transmitted_albedo *
+               (coupling(wo, e_o, wi) * (diffuse_weight() * diffuse_transmission() * kInvPi));
+    }
     return r;
   }
 
   // Probabilities of sampling the metal, the dielectric interface, the diffuse base and its
-  // transmission: each lobe's share of the light scattered towards wo.
-  std::array<float, 4> lobe_probabilities(const Vec3f& wo) const {
-    const float e = E(wo.z), diffuse = diffuse_weight() * (1 - e);
+  // transmission: each lobe's share of the light scattered towards wo, e = E(μ_o).
+  std::array<float, 4> lobe_probabilities(float e) const {
+    const float diffuse = diffuse_weight() * (1 - e);
     std::array<float, 4> w = {metallic_, (1 - metallic_) * (e + transmission_ * (1 - e)),
                               diffuse * (1 - diffuse_transmission()) * std::max(albedo_.average(), 0.f), 0.f};
     if constexpr (Extensions)
@@ -292,13 +318,16 @@ class LayeredBsdf {
     return d;
   }
 
-  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const { return layered_f(wo, wi, base_.f(wo, wi)); }
-
-  float pdf(const Vec3f& wo, const Vec3f& wi) const { return mixture_pdf(wo, wi, layer_probabilities(wo)); }
+  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const { return eval(wo, wi).f; }
+  float pdf(const Vec3f& wo, const Vec3f& wi) const { return eval(wo, wi).pdf; }
+  BsdfEval<N> eval(const Vec3f& wo, const Vec3f& wi) const {
+    return mixture(wo, wi, layer_probabilities(wo), base_.eval(wo, wi));
+  }
 
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
     const auto p = layer_probabilities(wo);
     std::optional<BsdfSample<N>> s;
+    std::optional<BsdfEval<N>> base;
     if (uc < p[0]) {
       s = coat_.sample_f(to_coat(wo, wo), uc / p[0], u);
       if (!s) return std::nullopt;
@@ -311,7 +340,7 @@ class LayeredBsdf {
       }
     } else if (uc < p[0] + p[1]) {
       s = sheen_.sample_f(wo, 0, u);
-    } else {  // the base's own f and pdf at its sample are the parts the whole needs of it
+    } else {
       s = base_.sample_f(wo, std::min((uc - p[0] - p[1]) / p[2], 0.99999994f), u);
       if (!s) return std::nullopt;
       if (s->specular) {
@@ -319,28 +348,17 @@ class LayeredBsdf {
         s->pdf *= p[2];
         return s;
       }
-      s->f = layered_f(wo, s->wi, s->f);
-      s->pdf = mixture_pdf(wo, s->wi, p, s->pdf);
-      if (!(s->pdf > 0)) return std::nullopt;
-      return s;
+      base = BsdfEval<N>{s->f, s->pdf};  // the base's sample holds its f and pdf
     }
     if (!s) return std::nullopt;
-    s->f = f(wo, s->wi);
-    s->pdf = mixture_pdf(wo, s->wi, p);
-    if (!(s->pdf > 0)) return std::nullopt;
+    const BsdfEval<N> e = mixture(wo, s->wi, p, base ? *base : base_.eval(wo, s->wi));
+    if (!(e.pdf > 0)) return std::nullopt;
+    s->f = e.f;
+    s->pdf = e.pdf;
     return s;
   }
 
  private:
-  // The whole, for the base's value base_f at (wo, wi).
-  SampledSpectrum<N> layered_f(const Vec3f& wo, const Vec3f& wi, const SampledSpectrum<N>& base_f) const {
-    SampledSpectrum<N> r = base_f * sheen_scale(wo, wi);
-    if (sheen_weight_ > 0) r += sheen_.f(wo, wi);
-    r *= coat_scale(wo, wi);
-    if (coat_weight_ > 0 && same_hemisphere(wo, wi)) r += coat_.f(to_coat(wo, wo), to_coat(wo, wi)) * coat_weight_;
-    return r;
-  }
-
   // w in the coat's frame, seen from wo's side taken up (the coat is evaluated above the
   // surface), and back.
   Vec3f to_coat(const Vec3f& wo, const Vec3f& w) const {
@@ -366,13 +384,17 @@ class LayeredBsdf {
   }
   float base_scale(const Vec3f& wo, const Vec3f& wi) const { return coat_scale(wo, wi) * sheen_scale(wo, wi); }
 
-  float mixture_pdf(const Vec3f& wo, const Vec3f& wi, const std::array<float, 3>& p) const {
-    return mixture_pdf(wo, wi, p, base_.pdf(wo, wi));
-  }
-  float mixture_pdf(const Vec3f& wo, const Vec3f& wi, const std::array<float, 3>& p, float base_pdf) const {
-    float r = p[2] * base_pdf;
-    if (p[0] > 0 && same_hemisphere(wo, wi)) r += p[0] * coat_.pdf(to_coat(wo, wo), to_coat(wo, wi));
-    if (p[1] > 0) r += p[1] * sheen_.pdf(wo, wi);
+  // f and Σ (probability of layer) × (its pdf), for the probabilities p of wo and the base's own f and pdf.
+  BsdfEval<N> mixture(const Vec3f& wo, const Vec3f& wi, const std::array<float, 3>& p, const BsdfEval<N>& base) const {
+    BsdfEval<N> r{base.f * sheen_scale(wo, wi), p[2] * base.pdf};
+    if (sheen_weight_ > 0) r.f += sheen_.f(wo, wi);
+    r.f *= coat_scale(wo, wi);
+    if (coat_weight_ > 0 && same_hemisphere(wo, wi)) {
+      const BsdfEval<N> c = coat_.eval(to_coat(wo, wo), to_coat(wo, wi));
+      r.f += c.f * coat_weight_;
+      if (p[0] > 0) r.pdf += p[0] * c.pdf;
+    }
+    if (p[1] > 0) r.pdf += p[1] * sheen_.pdf(wo, wi);
     return r;
   }
 
@@ -390,7 +412,7 @@ class LayeredBsdf {
   DielectricBsdf<N> coat_;
   bool coat_compensated_;
   float coat_weight_;
-  SpecularAlbedo::Roughness coat_roughness_;  // where the coat's α falls on the albedo tables
+  SpecularAlbedo::Roughness coat_roughness_;  // the coat's α on the albedo tables, found once
   float coat_eta_;
   bool coat_tilted_;
   Frame coat_frame_;

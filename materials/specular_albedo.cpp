@@ -1,5 +1,7 @@
 #include "materials/specular_albedo.h"
 
+#include <limits>
+
 #include "materials/albedo_tables.h"
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"
@@ -26,8 +28,14 @@ float reflection_at(const Point& p, float eta, bool compensated) {
 }  // namespace
 
 SpecularAlbedo::Roughness SpecularAlbedo::roughness(float alpha) {
-  const Lerp a = alpha_node(alpha);
-  return {alpha, a.i, a.t};
+  // The lobes of one material (metal, dielectric, the diffuse coupling) ask for the same α in a
+  // row at every hit; the last answer is kept per thread, as the cube root costs ~100 instructions.
+  thread_local Roughness last{std::numeric_limits<float>::quiet_NaN(), 0, 0.f};
+  if (alpha != last.alpha) {
+    const Lerp a = alpha_node(alpha);
+    last = {alpha, a.i, a.t};
+  }
+  return last;
 }
 
 SpecularAlbedo::Direction SpecularAlbedo::direction(float mu, const Roughness& r) {

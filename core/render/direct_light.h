@@ -36,11 +36,12 @@ std::optional<LightContribution<N>> light_contribution(const World& world, const
   if (!sample || sample->L.is_zero()) return std::nullopt;
   const Vec3f wi = frame.to_local(sample->wi);
   if (wrong_side(si, sample->wi, wi.z * wo.z < 0)) return std::nullopt;
-  const SampledSpectrum<N> f = bsdf_f(bsdf, wo, wi) * abs_cos_theta(wi);
+  const BsdfEval<N> e = bsdf_eval(bsdf, wo, wi);
+  const SampledSpectrum<N> f = e.f * abs_cos_theta(wi);
   if (f.is_zero()) return std::nullopt;
   ++counters.shadow;
   if (world.occluded(sample->shadow_ray)) return std::nullopt;
-  return LightContribution<N>{f * sample->L, sample->pdf, bsdf_pdf(bsdf, wo, wi)};
+  return LightContribution<N>{f * sample->L, sample->pdf, e.pdf};
 }
 
 }  // namespace prism

@@ -23,6 +23,12 @@ World::World(const Scene& scene, const AccelOptions& accel)
   // The tables a render reads, loaded here rather than at the first hit inside the timed render.
   RgbToSpectrumTable::srgb();
   cie();
+  metal_nk_from_reflectance(0.5f);  // builds the edge-tint table of the base-colour metals (~40 M instructions)
+  // Untextured base colours, upsampled once (used where the mesh has no vertex colours).
+  base_color_spectra_.resize(scene.materials.size());
+  for (size_t i = 0; i < scene.materials.size(); ++i)
+    if (const auto* pbr = std::get_if<PbrMaterial>(&scene.materials[i].kind); pbr && !pbr->base_color_texture)
+      base_color_spectra_[i].emplace(pbr->base_color);
 }
 
 // Transformed exactly as the accel transforms the triangles it flattens into world space, so the
@@ -163,7 +169,10 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
   si.prim = hit.prim;
   for (int set = 0; set < 2; ++set)
     if (!m.uv[set].empty()) si.at.uv[set] = interpolate(m.uv[set], m, hit.prim, b);
-  if (!m.colors.empty()) si.at.vertex_color = interpolate(m.colors, m, hit.prim, b);
+  if (!m.colors.empty())
+    si.at.vertex_color = interpolate(m.colors, m, hit.prim, b);
+  else if (const auto& spectrum = base_color_spectra_[m.material])
+    si.at.base_color_spectrum = &*spectrum;
 
   if (!m.normals.empty()) {
     const Vec3f ns = transform_normal(instance.to_world, interpolate(m.normals, m, hit.prim, b));

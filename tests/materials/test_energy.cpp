@@ -351,6 +351,31 @@ TEST_CASE("every sampled BSDF lobe follows its pdf (chi-square)") {
   }
 }
 
+TEST_CASE("a BSDF sample and eval carry exactly what f and pdf give on their own (bit for bit)") {
+  // The mixtures reuse the f and pdf their sampled lobe computed, and eval shares work between f
+  // and pdf: each must give exactly what f and pdf give on their own.
+  Rng rng(37, 0);
+  for (const Case& c : cases()) {
+    const Bsdf<N> b = c.make();
+    for (int k = 0; k < 100; ++k) {
+      const Vec3f wo = sample_uniform_sphere({rng.uniform(), rng.uniform()});
+      const Vec3f wi = sample_uniform_sphere({rng.uniform(), rng.uniform()});
+      const float uc = rng.uniform();
+      const Vec2f u(rng.uniform(), rng.uniform());
+      INFO(c.name << ", sample " << k);
+      const BsdfEval<N> e = bsdf_eval(b, wo, wi);
+      const SampledSpectrum<N> f = bsdf_f(b, wo, wi);
+      for (int i = 0; i < N; ++i) CHECK(e.f[i] == f[i]);
+      CHECK(e.pdf == bsdf_pdf(b, wo, wi));
+      const auto s = bsdf_sample_f(b, wo, uc, u);
+      if (!s || s->specular) continue;
+      const SampledSpectrum<N> fs = bsdf_f(b, wo, s->wi);
+      for (int i = 0; i < N; ++i) CHECK(s->f[i] == fs[i]);
+      CHECK(s->pdf == bsdf_pdf(b, wo, s->wi));
+    }
+  }
+}
+
 TEST_CASE("the glTF base is energy-consistent: a white plastic reflects everything it does not transmit") {
   // ρ = 1 under a specular layer: albedo = E_spec(μ) + (1 − E(μ)) · 1 = 1 up to the tabulated E.
   Rng rng(23, 0);
