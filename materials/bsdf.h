@@ -28,14 +28,7 @@ float bsdf_pdf(const Bsdf<N>& b, const Vec3f& wo, const Vec3f& wi) {
 // f and pdf together: one pass where a lobe shares their work (eval), else the two calls.
 template <int N>
 BsdfEval<N> bsdf_eval(const Bsdf<N>& b, const Vec3f& wo, const Vec3f& wi) {
-  return std::visit(
-      [&](const auto& lobe) {
-        if constexpr (requires { lobe.eval(wo, wi); })
-          return lobe.eval(wo, wi);
-        else
-          return BsdfEval<N>{lobe.f(wo, wi), lobe.pdf(wo, wi)};
-      },
-      b);
+  return std::visit([&](const auto& lobe) { return lobe_eval<N>(lobe, wo, wi); }, b);
 }
 
 template <int N>

@@ -31,6 +31,15 @@ struct BsdfEval {
   float pdf;
 };
 
+// A lobe's f and pdf together: its own eval where it shares their work, else the two calls.
+template <int N, class Lobe>
+BsdfEval<N> lobe_eval(const Lobe& lobe, const Vec3f& wo, const Vec3f& wi) {
+  if constexpr (requires { lobe.eval(wo, wi); })
+    return lobe.eval(wo, wi);
+  else
+    return BsdfEval<N>{lobe.f(wo, wi), lobe.pdf(wo, wi)};
+}
+
 // One delta direction of a BSDF and the share of light it carries (f·|cos θ_i| with the delta
 // integrated out), for tracers that follow every specular branch.
 template <int N>

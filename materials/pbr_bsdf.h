@@ -91,7 +91,20 @@ class PbrBsdf {
   }
 
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const { return eval(wo, wi).f; }
-  float pdf(const Vec3f& wo, const Vec3f& wi) const { return eval(wo, wi).pdf; }
+  // Σ (probability of lobe) × (its pdf), without the lobes' values: what eval(wo, wi).pdf sums.
+  float pdf(const Vec3f& wo, const Vec3f& wi) const {
+    if (flips(wo)) return pdf(-wo, -wi);
+    const auto p = lobe_probabilities(E(wo.z));
+    float r = 0.f;
+    if (metallic_ > 0 && p[0] > 0) r += p[0] * metal_.pdf(wo, wi);
+    if (metallic_ < 1 && p[1] > 0) r += p[1] * dielectric_.pdf(wo, wi);
+    const float cosine_pdf = cosine_hemisphere_pdf(abs_cos_theta(wi));
+    if (same_hemisphere(wo, wi))
+      r += p[2] * cosine_pdf;
+    else if constexpr (Extensions)
+      r += p[3] * cosine_pdf;
+    return r;
+  }
   BsdfEval<N> eval(const Vec3f& wo, const Vec3f& wi) const {
     if (flips(wo)) return eval(-wo, -wi);
     const float e_o = E(wo.z);
@@ -165,14 +178,14 @@ class PbrBsdf {
                                       in = SpecularAlbedo::direction(std::abs(wi.z), roughness_);
       const bool film = lanes.excess.max() > 0;
       const float white_o = film ? table.white(o) : 0.f, white_i = film ? table.white(in) : 0.f;
-      std::array<float, N> e_o, e_i;
-      table.E(o, lanes.eta, compensated_, e_o);
-      table.E(in, lanes.eta, compensated_, e_i);
+      std::array<float, N> lane_e_o, lane_e_i;  // each lane's E(μ) at its own index, before specular_
+      table.E(o, lanes.eta, compensated_, lane_e_o);
+      table.E(in, lanes.eta, compensated_, lane_e_i);
       SampledSpectrum<N> c;
       for (int i = 0; i < N; ++i)
         c[i] = lanes.e_avg[i] < 1
-                   ? std::max(0.f, 1 - specular_ * (e_o[i] + lanes.excess[i] * white_o)) *
-                         std::max(0.f, 1 - specular_ * (e_i[i] + lanes.excess[i] * white_i)) / (1 - lanes.e_avg[i])
+                   ? std::max(0.f, 1 - specular_ * (lane_e_o[i] + lanes.excess[i] * white_o)) *
+                         std::max(0.f, 1 - specular_ * (lane_e_i[i] + lanes.excess[i] * white_i)) / (1 - lanes.e_avg[i])
                    : 0.f;
       return c;
     }
@@ -190,11 +203,7 @@ class PbrBsdf {
   BsdfEval<N> mixture(const Vec3f& wo, const Vec3f& wi, const std::array<float, 4>& p, float e_o,
                       const std::optional<Sampled>& sampled = {}) const {
     const auto lobe = [&](int i, const auto& bsdf) {
-      if (sampled && sampled->lobe == i) return sampled->eval;
-      if constexpr (requires { bsdf.eval(wo, wi); })
-        return bsdf.eval(wo, wi);
-      else
-        return BsdfEval<N>{bsdf.f(wo, wi), bsdf.pdf(wo, wi)};
+      return sampled && sampled->lobe == i ? sampled->eval : lobe_eval<N>(bsdf, wo, wi);
     };
     BsdfEval<N> r{SampledSpectrum<N>(0.f), 0.f};
     if (metallic_ > 0) {
@@ -319,7 +328,15 @@ class LayeredBsdf {
   }
 
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const { return eval(wo, wi).f; }
-  float pdf(const Vec3f& wo, const Vec3f& wi) const { return eval(wo, wi).pdf; }
+  // Σ (probability of layer) × (its pdf), without the layers' values: what eval(wo, wi).pdf sums.
+  float pdf(const Vec3f& wo, const Vec3f& wi) const {
+    const auto p = layer_probabilities(wo);
+    float r = p[2] * base_.pdf(wo, wi);
+    if (coat_weight_ > 0 && same_hemisphere(wo, wi) && p[0] > 0)
+      r += p[0] * coat_.pdf(to_coat(wo, wo), to_coat(wo, wi));
+    if (p[1] > 0) r += p[1] * sheen_.pdf(wo, wi);
+    return r;
+  }
   BsdfEval<N> eval(const Vec3f& wo, const Vec3f& wi) const {
     return mixture(wo, wi, layer_probabilities(wo), base_.eval(wo, wi));
   }

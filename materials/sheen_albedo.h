@@ -21,7 +21,6 @@ class SheenAlbedo {
 
   static const SheenAlbedo& table();
   float E(float mu, const Roughness& r) const;
-  float E(float mu, float alpha) const { return E(mu, roughness(alpha)); }
   float scale(float alpha) const;
 };
 

@@ -49,10 +49,6 @@ const SpecularAlbedo& SpecularAlbedo::table() {
   return t;
 }
 
-float SpecularAlbedo::E(const Direction& d, float eta, bool compensated) const {
-  return d.smooth ? fresnel_dielectric(d.mu, eta) : reflection_at(point(d), eta, compensated);
-}
-
 void SpecularAlbedo::E(const Direction& d, std::span<const float> eta, bool compensated, std::span<float> out) const {
   if (d.smooth) {
     for (size_t i = 0; i < eta.size(); ++i) out[i] = fresnel_dielectric(d.mu, eta[i]);

@@ -41,7 +41,6 @@ class SpecularAlbedo {
   static Direction direction(float mu, const Roughness& r);
 
   static const SpecularAlbedo& table();
-  float E(const Direction& d, float eta, bool compensated) const;
   // E at one direction for several indices (one per lane) at once: lanes whose η fall in the
   // same cell of the η axis (neighbouring wavelengths, mostly) read its two tables once.
   void E(const Direction& d, std::span<const float> eta, bool compensated, std::span<float> out) const;
@@ -50,12 +49,6 @@ class SpecularAlbedo {
   float interface(float mu, const Roughness& r, float eta) const;
   float white(const Direction& d) const;
   float white(float mu, const Roughness& r) const;
-  float E(float mu, float alpha, float eta, bool compensated) const {
-    return E(mu, roughness(alpha), eta, compensated);
-  }
-  float average(float alpha, float eta, bool compensated) const { return average(roughness(alpha), eta, compensated); }
-  float interface(float mu, float alpha, float eta) const { return interface(mu, roughness(alpha), eta); }
-  float white(float mu, float alpha) const { return white(mu, roughness(alpha)); }
   float white_average(const Roughness& r) const;
   float white_average(float alpha) const { return white_average(roughness(alpha)); }
 };
