@@ -5,6 +5,7 @@
 #include "render/direct_light.h"
 #include "render/medium_stack.h"
 #include "render/path_vertex.h"
+#include "render/russian_roulette.h"
 #include "spectral/cie.h"
 
 namespace prism {
@@ -95,7 +96,7 @@ void trace_light_path(const BdptScene& scene, SampledWavelengths<N>& lambda, Sam
     if (bs->transmission && scene.media) media.cross(material, entering);
 
     // Russian roulette on the throughput relative to the emitted one, after the first bounce.
-    const float q = std::max(0.f, 1.f - beta.max() / beta0);
+    const float q = roulette_termination(beta.max() / beta0);
     if (options.russian_roulette && length >= 2 && q > 0.f) {
       if (sampler.get_1d() < q) break;
       beta /= 1.f - q;
@@ -121,7 +122,8 @@ SampledSpectrum<N> connect_light(const BdptScene& scene, const SurfaceInteractio
   if (!s || s->L.is_zero() || !(s->pdf > 0.f) || pick == 0.f) return SampledSpectrum<N>(0.f);
   const Vec3f wi = frame.to_local(s->wi);
   if (wrong_side(si, s->wi, wi.z * wo.z < 0)) return SampledSpectrum<N>(0.f);
-  const SampledSpectrum<N> f = bsdf_f(bsdf, wo, wi) * abs_cos_theta(wi);
+  const BsdfEval<N> e = bsdf_eval(bsdf, wo, wi);
+  const SampledSpectrum<N> f = e.f * abs_cos_theta(wi);
   if (f.is_zero()) return SampledSpectrum<N>(0.f);
 
   // The direct sample's solid-angle density (a point light's is d², a directional light's 1,
@@ -136,7 +138,7 @@ SampledSpectrum<N> connect_light(const BdptScene& scene, const SurfaceInteractio
     direct_pdf = length_squared(sp->point.position - si.p), distance = std::sqrt(direct_pdf);
   }
   const float emission_pdf = pdf_le(light, -s->wi, scene.disk).product();
-  const float bsdf_dir = is_delta(light) ? 0.f : bsdf_pdf(bsdf, wo, wi);
+  const float bsdf_dir = is_delta(light) ? 0.f : e.pdf;
   const float w_light = mis(bsdf_dir / (pick * direct_pdf));
   const float w_camera = mis(emission_pdf * abs_dot(si.n, s->wi) / (direct_pdf * cos_light)) *
                          m.connection(bsdf_pdf(bsdf, wi, wo), factors);
@@ -160,10 +162,11 @@ SampledSpectrum<N> connect_vertices(const BdptScene& scene, const SurfaceInterac
   const Vec3f w = d / dist;
   const Vec3f wi = frame.to_local(w), wl = v.frame.to_local(-w);
   if (wrong_side(si, w, wi.z * wo.z < 0) || wrong_side(v.si, -w, wl.z * v.wo.z < 0)) return SampledSpectrum<N>(0.f);
-  const SampledSpectrum<N> c = bsdf_f(bsdf, wo, wi) * v.adjoint_f(wl, -w) * v.beta * (abs_cos_theta(wi) / dist2);
+  const BsdfEval<N> e = bsdf_eval(bsdf, wo, wi);
+  const SampledSpectrum<N> c = e.f * v.adjoint_f(wl, -w) * v.beta * (abs_cos_theta(wi) / dist2);
   if (c.is_zero()) return SampledSpectrum<N>(0.f);
   // Each side's density of making the other's vertex, as an area density there.
-  const float camera_pdf = bsdf_pdf(bsdf, wo, wi) * abs_dot(v.si.n, w) / dist2;
+  const float camera_pdf = e.pdf * abs_dot(v.si.n, w) / dist2;
   const float light_pdf = bsdf_pdf(v.bsdf, v.wo, wl) * abs_dot(si.n, w) / dist2;
   const float w_light = mis(camera_pdf) * v.mis.connection(bsdf_pdf(v.bsdf, wl, v.wo), factors);
   const float w_camera = mis(light_pdf) * m.connection(bsdf_pdf(bsdf, wi, wo), factors);
@@ -286,7 +289,7 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, SampledWavelen
       eta_scale *= sqr(bs->eta);
       if (scene.media) media.cross(material, entering);
     }
-    const float q = std::max(0.f, 1.f - beta.max() * eta_scale);
+    const float q = roulette_termination(beta.max() * eta_scale);
     if (options.russian_roulette && depth >= 1 && q > 0.f) {
       if (sampler.get_1d() < q) break;
       beta /= 1.f - q;

@@ -93,7 +93,7 @@ namespace {
 
 // The highest ratio of pixel bytes to file bytes each OpenEXR compression can reach: RLE
 // stores a run of 128 bytes in 2; deflate (ZIP, ZIPS) at most 1032:1, PXR24 deflates 24 of
-// each 32 bits; B44 keeps a flat 4×4 block of halves (32 bytes) in 3. PIZ and DWA have no
+// each 32 bits; B44A keeps a flat 4×4 block of halves (32 bytes) in 3 (B44 always in 14). PIZ and DWA have no
 // simple bound and get deflate after RLE (64 · 1032).
 double best_compression_ratio(Imf::Compression c) {
   switch (c) {

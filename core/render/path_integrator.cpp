@@ -2,6 +2,7 @@
 
 #include "render/direct_light.h"
 #include "render/medium_stack.h"
+#include "render/russian_roulette.h"
 
 namespace prism {
 
@@ -96,9 +97,8 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
       if constexpr (Media) media.cross(material, entering);
     }
 
-    // Russian roulette: continue with probability min(1, √(max throughput)) after the first bounce
-    // (the square root, as Cycles does, ends paths later: less roulette noise for little more time).
-    const float q = std::max(0.f, 1.f - std::sqrt(beta.max() * eta_scale));
+    // Russian roulette after the first bounce.
+    const float q = roulette_termination(beta.max() * eta_scale);
     if (options.russian_roulette && depth >= 1 && q > 0.f) {
       if (sampler.get_1d() < q) break;
       beta /= 1.f - q;

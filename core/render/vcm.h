@@ -62,9 +62,10 @@ class VcmIteration {
       if ((dot(ph.wi, si.n) * dot(si.wo, si.n) <= 0) != (wi.z * wo.z < 0)) return;  // direct_light.h wrong_side
       const float cos_g = abs_dot(si.n, ph.wi);
       if (!(cos_g > 0.f)) return;
-      const SampledSpectrum<N> f = bsdf_f(bsdf, wo, wi) * (abs_cos_theta(wi) / cos_g);
+      const BsdfEval<N> e = bsdf_eval(bsdf, wo, wi);
+      const SampledSpectrum<N> f = e.f * (abs_cos_theta(wi) / cos_g);
       if (f.is_zero()) return;
-      const float w_light = ph.vcm * factors_.vc + ph.vm * mis(bsdf_pdf(bsdf, wo, wi));
+      const float w_light = ph.vcm * factors_.vc + ph.vm * mis(e.pdf);
       const float w_camera = m.vcm * factors_.vc + m.vm * mis(bsdf_pdf(bsdf, wi, wo));
       (ph.hero_only ? hero : all) += f * ph.beta * (normalization_ / (w_light + 1.f + w_camera));
     });
