@@ -2,7 +2,8 @@
 // on data/scenes/dispersion.gltf over SEEDS independent renders each, with the standard error
 // from the spread of the per-seed means (VCM's pixels share photons and wavelengths within an
 // iteration, so the spread of pixels within one image says nothing about its mean's error).
-// It bisects VCM's open 1.7% offset against BDPT (README, docs/bidirectional); e.g.
+// It bisected VCM's 1.7% offset against BDPT, which came from the prism's base lying on the floor
+// (README, docs/bidirectional); e.g.
 //   VARIANT=1 SPP=128 SEEDS=12 build/tests/tests_render "[vcm-bisection]"
 // VARIANT bits: 1 prism of constant index, 2 prism diffuse, 4 emitter without its glossy coat,
 // 8 floor and wall black, 16 prism lowered 1 mm onto the floor (its base coincident with the floor,
