@@ -148,11 +148,11 @@ ExrPlanes read_exr_planes(const std::filesystem::path& file, const std::vector<s
     const size_t pixels = size_t(img.width) * img.height;
     img.planes.resize(pixels * names.size());
     Imf::FrameBuffer fb;
-    for (size_t ch = 0; ch < names.size(); ++ch) {
-      char* base = reinterpret_cast<char*>(img.planes.data() + ch * pixels) -
-                   (size_t(dw.min.x) + size_t(dw.min.y) * img.width) * sizeof(float);
-      fb.insert(names[ch], Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * img.width));
-    }
+    // Slice::Make places the data window's origin at the plane's start (offsetting the pointer
+    // ourselves by a window origin far from 0 is undefined behaviour, found by fuzz_env_map).
+    for (size_t ch = 0; ch < names.size(); ++ch)
+      fb.insert(names[ch], Imf::Slice::Make(Imf::FLOAT, img.planes.data() + ch * pixels, dw, sizeof(float),
+                                            sizeof(float) * img.width));
     in.setFrameBuffer(fb);
     in.readPixels(dw.min.y, dw.max.y);
     return img;

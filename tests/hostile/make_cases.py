@@ -106,23 +106,24 @@ def png(width, height, pixels=True):
     return b"\x89PNG\r\n\x1a\n" + header + body + chunk(b"IEND", b"")
 
 
-def exr(width, height, chunk_bytes, compression=0, offsets=True):
+def exr(width, height, chunk_bytes, compression=0, offsets=True, origin=(0, 0)):
     """A scanline OpenEXR file of float R, G, B whose chunks each store chunk_bytes zero bytes,
     whatever their lines need (OpenEXR 3.1 zero-fills a short chunk); offsets=False leaves the
-    line offset table empty (every chunk missing)."""
+    line offset table empty (every chunk missing); origin is the data window's top left corner."""
 
     def attr(name, kind, data):
         return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(data)) + data
 
     channels = b"".join(c + b"\0" + struct.pack("<iBBBBii", 2, 0, 0, 0, 0, 1, 1) for c in (b"B", b"G", b"R")) + b"\0"
-    box = struct.pack("<4i", 0, 0, width - 1, height - 1)
+    x0, y0 = origin
+    box = struct.pack("<4i", x0, y0, x0 + width - 1, y0 + height - 1)
     header = (attr("channels", "chlist", channels) + attr("compression", "compression", bytes([compression]))
               + attr("dataWindow", "box2i", box) + attr("displayWindow", "box2i", box)
               + attr("lineOrder", "lineOrder", b"\0") + attr("pixelAspectRatio", "float", struct.pack("<f", 1))
               + attr("screenWindowCenter", "v2f", struct.pack("<2f", 0, 0))
               + attr("screenWindowWidth", "float", struct.pack("<f", 1)) + b"\0")
     start = 8 + len(header) + 8 * height
-    chunks = b"".join(struct.pack("<ii", y, chunk_bytes) + b"\0" * chunk_bytes for y in range(height))
+    chunks = b"".join(struct.pack("<ii", y0 + y, chunk_bytes) + b"\0" * chunk_bytes for y in range(height))
     table = b"".join(struct.pack("<Q", start + y * (8 + chunk_bytes) if offsets else 0) for y in range(height))
     return b"\x76\x2f\x31\x01" + struct.pack("<I", 2) + header + table + chunks
 
@@ -482,6 +483,9 @@ def build_cases():
               extra_files={"sky.exr": exr(200000, 400, 0, offsets=False)},
               args=RENDER + ["--env-map", "{dir}/sky.exr"], mention=["sky.exr", "incomplete"])
     gltf_case("env_map_exr_valid", "rendered", B(), extra_files={"sky.exr": exr(4, 2, 48)},
+              args=RENDER + ["--env-map", "{dir}/sky.exr"])
+    # Found by fuzz_env_map: a data window at (-1, -1) made the reader offset its pointer out of bounds.
+    gltf_case("env_map_exr_negative_origin", "rendered", B(), extra_files={"sky.exr": exr(4, 2, 48, origin=(-1, -1))},
               args=RENDER + ["--env-map", "{dir}/sky.exr"])
     gltf_case("env_map_hdr_claims_more", "refused", B(),
               extra_files={"sky.hdr": b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8000 +X 16000\n" + bytes(64)},
