@@ -21,12 +21,10 @@ import argparse
 import base64
 import json
 import os
-import shutil
 import struct
-import subprocess
 import sys
 
-REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from cycles_pair import add_common_args, harness, render_pair
 DEPTH, HALF, INTENSITY, ETA = 0.05, 0.1, 1.0, 1.5  # light 5 cm from a 20 cm square, 1 cd, index 1.5
 
 
@@ -140,15 +138,9 @@ def render(a, kind, roughness):
     gltf = os.path.join(work, kind + ".gltf")
     with open(gltf, "w") as f:
         json.dump(scene(kind, roughness), f, indent=1)
-    size = ["--width", str(a.size), "--height", str(a.size)]
-    subprocess.run([a.prism, "render", gltf, "-o", os.path.join(work, "prism.exr"), "--spp", str(a.spp), "-q",
-                    "--no-energy-compensation", "--threads", str(a.threads)] + size, check=True, stdout=subprocess.DEVNULL)
-    r = subprocess.run([os.path.join(a.harness, "render_gltf.sh"), "--in", gltf, "--out", os.path.join(work, "cycles.exr"),
-                        "--spp", str(a.spp), "--threads", str(a.threads), "--lighting-mode", "COMPAT", "--filter", "box",
-                        "--filter-width", "1"] + size, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    if r.returncode != 0:
-        sys.exit("lamp_pane: Cycles failed; log: %s" % os.path.join(work, "cycles.exr.log"))
-    return os.path.join(work, "prism.exr"), os.path.join(work, "cycles.exr")
+    common = ["--spp", str(a.spp), "--width", str(a.size), "--height", str(a.size)]
+    return render_pair("lamp_pane", a, gltf, ["--no-energy-compensation"] + common,
+                       ["--lighting-mode", "COMPAT", "--filter", "box", "--filter-width", "1"] + common)
 
 
 def main():
@@ -156,25 +148,16 @@ def main():
     ap.add_argument("--spp", type=int, default=256)
     ap.add_argument("--size", type=int, default=128, help="image width and height (default 128)")
     ap.add_argument("--roughness", type=float, default=0.6, help="the pane's glTF roughness (the shade's: 0.6)")
-    ap.add_argument("--threads", type=int, default=2)
-    ap.add_argument("--out", default=os.path.join(REPO, "out", "lamp_pane"))
-    ap.add_argument("--shared", default=os.path.join(os.path.dirname(REPO), "shared"))
-    ap.add_argument("--prism", default=os.path.join(REPO, "build", "apps", "prism"))
+    add_common_args(ap, "lamp_pane")
     a = ap.parse_args()
-    a.harness = os.path.join(a.shared, "tools", "cycles")
-    if not os.path.isfile(os.path.join(a.harness, "render_gltf.sh")):
-        print("lamp_pane: SKIPPED: %s (the Cycles harness) not found" % a.harness)
-        return 0
-    if shutil.which("blender") is None:
-        print("lamp_pane: SKIPPED: Blender not found")
+    a.harness = harness("lamp_pane", a.shared)
+    if a.harness is None:
         return 0
     try:
         import numpy as np
     except ImportError:
         print("lamp_pane: SKIPPED: numpy not importable (run it with /usr/bin/python3)")
         return 0
-    sys.path.insert(0, a.harness)
-    sys.dont_write_bytecode = True
     import exrstats
 
     n, c = a.size, slice(a.size // 2 - 4, a.size // 2 + 4)

@@ -31,12 +31,10 @@ import argparse
 import base64
 import json
 import os
-import shutil
 import struct
-import subprocess
 import sys
 
-REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from cycles_pair import add_common_args, harness, render_pair
 ETA = 1.5  # the clear coat's index (KHR_materials_clearcoat)
 
 
@@ -96,15 +94,9 @@ def render(a, exrstats, rho, layer):
     gltf = os.path.join(work, "plane.gltf")
     with open(gltf, "w") as f:
         json.dump(scene(rho, layer), f, indent=1)
-    common = ["--spp", str(a.spp), "--width", str(a.size), "--height", str(a.size), "--threads", str(a.threads)]
-    prism_exr, cycles_exr = os.path.join(work, "prism.exr"), os.path.join(work, "cycles.exr")
-    subprocess.run([a.prism, "render", gltf, "-o", prism_exr, "-q", "--env", "1,1,1", "--max-depth", "4"] + common,
-                   check=True, stdout=subprocess.DEVNULL)
-    r = subprocess.run([os.path.join(a.harness, "render_gltf.sh"), "--in", gltf, "--out", cycles_exr, "--env", "1,1,1",
-                        "--max-bounces", "3", "--filter", "box", "--filter-width", "1"] + common,
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    if r.returncode != 0:
-        sys.exit("layering_cycles: Cycles failed; log: %s.log" % cycles_exr)
+    common = ["--spp", str(a.spp), "--width", str(a.size), "--height", str(a.size), "--env", "1,1,1"]
+    prism_exr, cycles_exr = render_pair("layering_cycles", a, gltf, ["--max-depth", "4"] + common,
+                                        ["--max-bounces", "3", "--filter", "box", "--filter-width", "1"] + common)
     return mean_y(exrstats, prism_exr), mean_y(exrstats, cycles_exr)
 
 
@@ -113,20 +105,11 @@ def main():
     ap.add_argument("--spp", type=int, default=64)
     ap.add_argument("--size", type=int, default=32, help="image width and height (default 32)")
     ap.add_argument("--rho", type=float, default=0.5, help="the base colour's grey (default 0.5)")
-    ap.add_argument("--threads", type=int, default=2)
-    ap.add_argument("--out", default=os.path.join(REPO, "out", "layering_cycles"))
-    ap.add_argument("--shared", default=os.path.join(os.path.dirname(REPO), "shared"))
-    ap.add_argument("--prism", default=os.path.join(REPO, "build", "apps", "prism"))
+    add_common_args(ap, "layering_cycles")
     a = ap.parse_args()
-    a.harness = os.path.join(a.shared, "tools", "cycles")
-    if not os.path.isfile(os.path.join(a.harness, "render_gltf.sh")):
-        print("layering_cycles: SKIPPED: %s (the Cycles harness) not found" % a.harness)
+    a.harness = harness("layering_cycles", a.shared)
+    if a.harness is None:
         return 0
-    if shutil.which("blender") is None:
-        print("layering_cycles: SKIPPED: Blender not found")
-        return 0
-    sys.path.insert(0, a.harness)
-    sys.dont_write_bytecode = True
     import exrstats
 
     f0, f_avg = fresnel(1.0, ETA), fresnel_average(ETA)
