@@ -31,9 +31,13 @@ SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& s
 }  // namespace
 
 template <int N, bool Media, bool Dispersion>
-SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths<N>& lambda, Sampler& sampler,
+SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavelengths<N>& lambda_in, Sampler& sampler,
                                  const PathOptions& options, RayCounters& counters) {
-  SampledSpectrum<N> L(0.f), beta(1.f);
+  // What the vertices before a dispersive interface add counts for every lane (L); after one,
+  // only the hero wavelength follows the path (`hero`, wavelengths.h hero_lane).
+  SampledWavelengths<N> lambda = lambda_in;
+  SampledSpectrum<N> L(0.f), hero(0.f), beta(1.f);
+  bool hero_only = false;
   bool specular_bounce = false;
   float bsdf_pdf_prev = 0.f;  // solid-angle pdf of the BSDF sample that made `ray`
   Vec3f reflect_axis_prev;    // where that vertex sampled the environment (see LightSampleContext)
@@ -52,11 +56,12 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     // otherwise the MIS weight of BSDF sampling against light sampling (whose solid-angle pdf,
     // a callable, is evaluated only then).
     const auto add_emitted = [&](const SampledSpectrum<N>& Le, int light, const auto& light_pdf_solid_angle) {
+      SampledSpectrum<N>& sum = hero_only ? hero : L;
       if (depth == 0 || specular_bounce || !options.next_event) {
-        L += beta * Le;
+        sum += beta * Le;
       } else {
         const float light_pdf = light_sampler.pmf(uint32_t(light)) * light_pdf_solid_angle();
-        L += beta * Le * power_heuristic(bsdf_pdf_prev, light_pdf);
+        sum += beta * Le * power_heuristic(bsdf_pdf_prev, light_pdf);
       }
     };
 
@@ -78,11 +83,13 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     const bool entering = si->front_face();
     const Dielectric* front = Media ? media.front_dielectric(material, entering) : nullptr;
     const Bsdf<N> bsdf = make_bsdf<N, Dispersion>(material, si->at, lambda, front);
+    if constexpr (Dispersion) hero_only = N > 1 && lambda.secondary_terminated();
     const Frame frame = si->shading_frame();
     const Vec3f wo = frame.to_local(si->wo);
     const Vec3f reflect_axis = material.transmits() ? Vec3f(0.f, 0.f, 0.f) : wo.z < 0 ? -frame.z : frame.z;
     if (options.next_event && !bsdf_is_specular(bsdf))
-      L += beta * sample_direct(world, *si, frame, bsdf, wo, reflect_axis, lambda, sky, sampler, counters);
+      (hero_only ? hero : L) +=
+          beta * sample_direct(world, *si, frame, bsdf, wo, reflect_axis, lambda, sky, sampler, counters);
 
     const float uc = sampler.get_1d();
     const auto bs = bsdf_sample_f(bsdf, wo, uc, sampler.get_2d());
@@ -107,12 +114,12 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     }
     if (beta.is_zero()) break;
   }
-  return L;
+  return L + hero_lane(hero);
 }
 
-#define PRISM_INSTANTIATE(N, MEDIA, DISPERSION)                                                                        \
-  template SampledSpectrum<N> path_radiance<N, MEDIA, DISPERSION>(const World&, Ray, SampledWavelengths<N>&, Sampler&, \
-                                                                  const PathOptions&, RayCounters&);
+#define PRISM_INSTANTIATE(N, MEDIA, DISPERSION)                                                                    \
+  template SampledSpectrum<N> path_radiance<N, MEDIA, DISPERSION>(const World&, Ray, const SampledWavelengths<N>&, \
+                                                                  Sampler&, const PathOptions&, RayCounters&);
 #define PRISM_INSTANTIATE_ALL(N)     \
   PRISM_INSTANTIATE(N, false, false) \
   PRISM_INSTANTIATE(N, false, true)  \

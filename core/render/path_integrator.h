@@ -23,9 +23,11 @@ struct PathFeatures {
   bool media = true, dispersion = true;
 };
 
-// Radiance arriving along `ray` at the path's wavelengths.
+// Radiance arriving along `ray` at the path's wavelengths: what a path that met a dispersive
+// interface found after it is carried by the hero wavelength alone (lane 0, N times over), what
+// it found before by every lane.
 template <int N, bool Media, bool Dispersion>
-SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths<N>& lambda, Sampler& sampler,
+SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavelengths<N>& lambda, Sampler& sampler,
                                  const PathOptions& options, RayCounters& counters);
 
 }  // namespace prism

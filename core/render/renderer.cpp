@@ -21,14 +21,14 @@ namespace {
 constexpr int kTileSize = 16;
 
 template <int N>
-using RadianceFn = SampledSpectrum<N> (*)(const World&, Ray, SampledWavelengths<N>&, Sampler&, const PathOptions&,
+using RadianceFn = SampledSpectrum<N> (*)(const World&, Ray, const SampledWavelengths<N>&, Sampler&, const PathOptions&,
                                           RayCounters&);
 
 // The radiance estimator for these options, compiled for the scene's features.
 template <int N>
 RadianceFn<N> radiance_estimator(const World& world, const RenderOptions& options) {
   if (options.integrator == IntegratorKind::whitted)
-    return [](const World& w, Ray r, SampledWavelengths<N>& l, Sampler& s, const PathOptions& o, RayCounters& c) {
+    return [](const World& w, Ray r, const SampledWavelengths<N>& l, Sampler& s, const PathOptions& o, RayCounters& c) {
       return whitted_radiance<N>(w, r, l, s, o, c);
     };
   const PathFeatures f = options.features.value_or(path_features(world.features()));
