@@ -72,24 +72,27 @@ void parse_part(const RenderArgs& args, RenderOptions& o) {
 }
 
 // Everything that shapes the image but the sample count: a checkpoint resumes, and parts merge,
-// only with these. The scene is named by its file name and the hash of its content (the file and
-// those it reads), not by its path: parts rendered on nodes that mount the shared folder at other
-// paths still merge.
+// only with these. The scene and the environment map are named by their file names and the hash
+// of their content (the scene's file and those it reads; the map's values), not by their paths:
+// parts rendered on nodes that mount the shared folder at other paths still merge, and a file
+// changed in place does not.
 std::string fingerprint(const RenderArgs& args, const Scene& scene, const Camera& camera, const RenderOptions& o,
                         std::optional<double> time) {
   const SceneArgs& s = args.scene;
+  const std::optional<EnvironmentMapDesc>& env_map = scene.environment_map;
   return fmt::format(
-      "scene={} scene-hash={:016x} time={} env={} env-map={} env-rotate={} env-scale={} camera={} "
+      "scene={} scene-hash={:016x} time={} env={} env-map={} env-map-hash={:016x} env-rotate={} env-scale={} camera={} "
       "camera-hash={:016x} size={}x{} "
       "integrator={} merge-radius={} "
       "seed={} sampler={} "
       "wavelengths={} max-depth={} light-sampling={} noise-threshold={} aovs={} spectral-bins={} "
       "energy-compensation={} gltf-scene={} variant={} animation={}",
-      scene.source.filename().string(), scene.source_hash, time ? fmt::format("{}", *time) : "-", s.env, s.env_map,
-      s.env_rotate, s.env_scale, s.camera, camera.hash(), camera.width(), camera.height(),
-      integrator_name(o.integrator), o.merge_radius, o.seed, sampler_name(o.sampler), o.wavelengths, o.path.max_depth,
-      o.path.next_event ? "mis" : "bsdf", o.noise_threshold, o.aovs, o.spectral_bins.to_string(), s.energy_compensation,
-      s.gltf.scene ? fmt::format("{}", *s.gltf.scene) : "-", s.gltf.variant, s.gltf.animation);
+      scene.source.filename().string(), scene.source_hash, time ? fmt::format("{}", *time) : "-", s.env,
+      std::filesystem::path(s.env_map).filename().string(), env_map ? env_map->hash : 0, s.env_rotate, s.env_scale,
+      s.camera, camera.hash(), camera.width(), camera.height(), integrator_name(o.integrator), o.merge_radius, o.seed,
+      sampler_name(o.sampler), o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf", o.noise_threshold,
+      o.aovs, o.spectral_bins.to_string(), s.energy_compensation, s.gltf.scene ? fmt::format("{}", *s.gltf.scene) : "-",
+      s.gltf.variant, s.gltf.animation);
 }
 
 // The image's error as the log and the header state it.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
+#include "base/checksum.h"
 #include "base/error.h"
 #include "base/log.h"
 #include "render/image_output.h"
@@ -33,7 +34,10 @@ EnvironmentMapDesc load_environment_map(const std::filesystem::path& file, float
     fail("{}: --env-scale {:g} makes its brightest value {:g}, over the {:g} Prism accepts", name, scale,
          double(brightest) * scale, kMaxEmission);
   if (negative > 0) log::warn("{}: {} negative values (outside Rec.709) set to 0", name, negative);
-  return {name, std::move(image), radians(rotation_degrees), scale};
+  Checksum hash;
+  hash.add(&image.width, sizeof image.width), hash.add(&image.height, sizeof image.height);
+  hash.add(image.rgb.data(), image.rgb.size() * sizeof(float));
+  return {name, std::move(image), radians(rotation_degrees), scale, hash.h};
 }
 
 EnvironmentMap::EnvironmentMap(const EnvironmentMapDesc& desc)

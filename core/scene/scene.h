@@ -79,6 +79,7 @@ struct EnvironmentMapDesc {
   RgbImage image;
   float rotation = 0.f;  // about +Y, right-handed [radians]
   float scale = 1.f;     // multiplies every texel
+  uint64_t hash = 0;     // FNV-1a of the image's values as read: names it in fingerprints, whatever its path
 };
 
 struct Scene {

@@ -204,10 +204,20 @@ TEST_CASE("merge: an animation's frames split into parts by the farm's scripts g
   CHECK_FALSE(std::filesystem::exists(out));
 }
 
-TEST_CASE("merge: parts name the scene by its file name and content, not by its path", "[cli][merge]") {
+TEST_CASE("merge: parts name the scene and the environment map by file name and content, not by path", "[cli][merge]") {
   const auto dir = test::temp_dir("merge_relocated");
-  // tri.gltf with its vertices in tri.bin, in three folders: b a copy of a, c with one vertex moved.
-  const auto write = [&](const char* folder, float top) {
+  // tri.gltf with its vertices in tri.bin and a sky.exr, in five folders: b a copy of a, c with
+  // one vertex moved; d a's scene with a brighter sky, e a's with the sky under another name.
+  const auto write_sky = [&](const char* folder, const char* name, float value) {
+    write_exr(dir / folder / name,
+              {4,
+               2,
+               std::vector<float>(4 * 2 * 3, value),
+               ColorPipeline::standard().chromaticities(ColorPipeline::kDefaultOutput),
+               {}},
+              false);
+  };
+  const auto write = [&](const char* folder, float top, float sky = 0.5f, const char* sky_name = "sky.exr") {
     std::filesystem::create_directories(dir / folder);
     std::ofstream(dir / folder / "tri.gltf") << R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
   "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
@@ -216,13 +226,15 @@ TEST_CASE("merge: parts name the scene by its file name and content, not by its 
     const float vertices[9] = {0, 0, 0, 1, 0, 0, 0, top, 0};
     std::ofstream(dir / folder / "tri.bin", std::ios::binary)
         .write(reinterpret_cast<const char*>(vertices), sizeof(vertices));
+    write_sky(folder, sky_name, sky);
   };
-  write("a", 1), write("b", 1), write("c", 2);
-  const auto part = [&](const char* folder, const char* samples) {
+  write("a", 1), write("b", 1), write("c", 2), write("d", 1, 0.6f), write("e", 1, 0.5f, "sky2.exr");
+  const auto part = [&](const char* folder, const char* samples, const char* sky_name = "sky.exr") {
     const std::filesystem::path file = dir / fmt::format("{}{}.prism-part", folder, samples[0]);
-    REQUIRE(test::run_prism(fmt::format("render \"{}\" --width 16 --height 16 --env 1,1,1 --spp 7 --samples {} -q "
-                                        "-o \"{}\"",
-                                        (dir / folder / "tri.gltf").string(), samples, file.string())) == 0);
+    REQUIRE(test::run_prism(fmt::format("render \"{}\" --width 16 --height 16 --env-map \"{}\" --spp 7 --samples {} "
+                                        "-q -o \"{}\"",
+                                        (dir / folder / "tri.gltf").string(), (dir / folder / sky_name).string(),
+                                        samples, file.string())) == 0);
     return " \"" + file.string() + "\"";
   };
   const std::filesystem::path out = dir / "out.exr";
@@ -230,4 +242,9 @@ TEST_CASE("merge: parts name the scene by its file name and content, not by its 
   std::string err;
   CHECK(test::run_prism("merge" + part("a", "0:3") + part("c", "3:7") + " -o \"" + out.string() + "\"", &err) == 1);
   CHECK_THAT(err, Catch::Contains("another scene or other options") && Catch::Contains("scene-hash="));
+  CHECK(test::run_prism("merge" + part("a", "0:3") + part("d", "3:7") + " -o \"" + out.string() + "\"", &err) == 1);
+  CHECK_THAT(err, Catch::Contains("env-map-hash="));
+  CHECK(test::run_prism("merge" + part("a", "0:3") + part("e", "3:7", "sky2.exr") + " -o \"" + out.string() + "\"",
+                        &err) == 1);
+  CHECK_THAT(err, Catch::Contains("env-map=sky2.exr"));
 }

@@ -30,6 +30,11 @@ if ! command -v slurmctld >/dev/null || ! command -v slurmd >/dev/null || ! comm
 fi
 
 host=$(hostname -s)
+# Two free ports, searched from a start hashed from DIR, so clusters in different directories
+# (two test runs at once) neither collide nor take a port another program listens on.
+listening() { ss -Htln "sport = :$1" 2>/dev/null | grep -q .; }
+port=$((20000 + $(printf %s "$dir" | cksum | cut -d' ' -f1) % 6000 * 2))
+while listening "$port" || listening "$((port + 1))"; do port=$((port + 2)); done
 mkdir -p "$dir/munge" "$dir/spool/ctld" "$dir/spool/d" "$dir/log"
 chmod 700 "$dir/munge"
 [ -f "$dir/munge/munge.key" ] || { dd if=/dev/urandom of="$dir/munge/munge.key" bs=1024 count=1 2>/dev/null; chmod 400 "$dir/munge/munge.key"; }
@@ -39,8 +44,8 @@ munged --force --key-file="$dir/munge/munge.key" --socket="$dir/munge/socket" --
 cat >"$dir/slurm.conf" <<CONF
 ClusterName=prism-local
 SlurmctldHost=$host
-SlurmctldPort=6917
-SlurmdPort=6918
+SlurmctldPort=$port
+SlurmdPort=$((port + 1))
 AuthType=auth/munge
 AuthInfo=socket=$dir/munge/socket
 CredType=cred/munge
