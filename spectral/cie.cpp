@@ -29,7 +29,7 @@ CieTables load_cie() {
   for (float v : t.y.values()) y_sum += v;
   t.y_integral = float(y_sum);
   for (size_t i = 0; i < t.y.values().size(); ++i)
-    t.xyz_rows.push_back({t.x.values()[i], t.y.values()[i], t.z.values()[i]});
+    t.xyz_rows.push_back({{t.x.values()[i], t.y.values()[i], t.z.values()[i], 0.f}});
 
   const auto d65_file = data_file("cie/cie_d65.csv");
   const auto d65 = dense_column(read_numeric_table(d65_file), "relative_power", d65_file.string());

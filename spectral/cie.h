@@ -3,7 +3,9 @@
 // spectra to XYZ. Convention: XYZ = ∫ S(λ) {x̄, ȳ, z̄}(λ) dλ / ∫ ȳ(λ) dλ, so that an illuminant of
 // luminance 1 (e.g. the normalised D65 below) has Y = 1 and a perfect white under it has Y = 1.
 
+#include <algorithm>
 #include <array>
+#include <bit>
 #include <vector>
 
 #include "spectral/rgb.h"
@@ -13,21 +15,14 @@ namespace prism {
 
 struct CieTables {
   DenselySampledSpectrum x, y, z;
-  DenselySampledSpectrum d65;                  // scaled so that its XYZ has Y = 1
-  float y_integral;                            // Σ ȳ(λ) · 1 nm over 360–830 nm
-  std::vector<std::array<float, 3>> xyz_rows;  // x̄, ȳ, z̄ side by side, one row per nm
-
-  // x̄(λ), ȳ(λ), z̄(λ) as x, y and z return them (linear between the 1-nm rows, 0 outside), found
-  // with one index: the renderer asks for all three at every wavelength of every sample.
-  std::array<float, 3> xyz_bar(float lambda) const {
-    const float u = lambda - kLambdaMin;
-    const int last = int(xyz_rows.size()) - 1;
-    if (!(u >= 0.f) || u > float(last)) return {0, 0, 0};
-    const int i = std::min(int(u), last - 1);
-    const float t = u - float(i);
-    const auto &a = xyz_rows[i], &b = xyz_rows[i + 1];
-    return {(1.f - t) * a[0] + t * b[0], (1.f - t) * a[1] + t * b[1], (1.f - t) * a[2] + t * b[2]};
-  }
+  DenselySampledSpectrum d65;  // scaled so that its XYZ has Y = 1
+  float y_integral;            // Σ ȳ(λ) · 1 nm over 360–830 nm
+  // x̄, ȳ, z̄ (and a 0) side by side, one row per nm from kLambdaMin: the renderer reads all three
+  // at every wavelength of every sample, one 4-float load per row.
+  struct alignas(16) XyzRow {
+    float v[4];
+  };
+  std::vector<XyzRow> xyz_rows;
 };
 
 // Loaded from data/cie/ on first use (thread-safe); throws prism::Error if the files are absent.
@@ -40,21 +35,21 @@ Xyz spectrum_to_xyz(const Spectrum& s);
 // lanes of S(λᵢ) x̄(λᵢ) / p(λᵢ), divided by ∫ȳ. Terminated lanes (pdf 0) contribute 0.
 template <int N>
 Xyz to_xyz(const SampledSpectrum<N>& s, const SampledWavelengths<N>& lambda) {
+  using Float4 = float __attribute__((vector_size(16)));
   const CieTables& t = cie();
-  SampledSpectrum<N> x, y, z;
+  const int last = int(t.xyz_rows.size()) - 1;
+  Float4 sum{0, 0, 0, 0};
   for (int i = 0; i < N; ++i) {
-    const auto bar = t.xyz_bar(lambda[i]);
-    x[i] = bar[0], y[i] = bar[1], z[i] = bar[2];
+    // x̄, ȳ, z̄ linear between the 1-nm rows, 0 outside them; a terminated lane adds nothing.
+    const float u = lambda[i] - kLambdaMin, pdf = lambda.pdf()[i];
+    if (!(u >= 0.f) || u > float(last) || pdf == 0.f) continue;
+    const int j = std::min(int(u), last - 1);
+    const float f = u - float(j), w = s[i] / pdf;
+    const auto a = std::bit_cast<Float4>(t.xyz_rows[j]), b = std::bit_cast<Float4>(t.xyz_rows[j + 1]);
+    sum += w * ((1.f - f) * a + f * b);
   }
-  const SampledSpectrum<N> w = safe_div(s, lambda.pdf());
   const float norm = 1.f / (N * t.y_integral);
-  float sx = 0, sy = 0, sz = 0;
-  for (int i = 0; i < N; ++i) {
-    sx += w[i] * x[i];
-    sy += w[i] * y[i];
-    sz += w[i] * z[i];
-  }
-  return {sx * norm, sy * norm, sz * norm};
+  return {sum[0] * norm, sum[1] * norm, sum[2] * norm};
 }
 
 }  // namespace prism

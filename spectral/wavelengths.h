@@ -115,4 +115,15 @@ class SampledWavelengths {
   SampledSpectrum<N> lambda_, pdf_;
 };
 
+// A contribution that only the hero wavelength could make (its path met a dispersive interface),
+// as an estimate over all lanes of wavelengths whose secondaries are still alive: N times its hero
+// lane, as terminate_secondary's pdf gives it. Estimators that keep such contributions apart from
+// those every lane could make stay unbiased lane by lane and lose only the former's colour.
+template <int N>
+SampledSpectrum<N> hero_lane(const SampledSpectrum<N>& c) {
+  SampledSpectrum<N> h(0.f);
+  h[0] = c[0] * float(N);
+  return h;
+}
+
 }  // namespace prism

@@ -76,8 +76,14 @@ void trace_light_path(const BdptScene& scene, SampledWavelengths<N>& lambda, Sam
     const bool entering = si->front_face();
     const Dielectric* front = scene.media ? media.front_dielectric(material, entering) : nullptr;
     const Frame frame = si->shading_frame();
-    LightVertex<N> v{*si, frame, make_bsdf<N>(material, si->at, lambda, front), frame.to_local(si->wo), beta,
-                     m,   length};
+    LightVertex<N> v{*si,
+                     frame,
+                     make_bsdf<N>(material, si->at, lambda, front),
+                     frame.to_local(si->wo),
+                     beta,
+                     m,
+                     length,
+                     lambda.secondary_terminated()};
     if (!bsdf_is_specular(v.bsdf)) vertices.push_back(v);
     if (length == options.max_depth) break;
 
@@ -196,7 +202,7 @@ void splat_to_camera(const BdptScene& scene, const LightVertex<N>& v, const MisF
   if (scene.world.occluded(spawn_ray_to(v.si.p, v.si.p_error, v.si.n, c->point, {}, {}))) return;
   const float weight = scene.light_tracing ? 1.f : 1.f / (1.f + w_light);
   const SampledSpectrum<N> L = v.beta * f * (c->importance * weight / scene.light_paths);
-  if (!splats.add(c->raster.x, c->raster.y, to_xyz(L, lambda))) ++invalid;
+  if (!splats.add(c->raster.x, c->raster.y, to_xyz(v.hero_only ? hero_lane(L) : L, lambda))) ++invalid;
 }
 
 }  // namespace
@@ -209,39 +215,45 @@ void trace_photons(const BdptScene& scene, SampledWavelengths<N> lambda, Sampler
   trace_light_path(scene, lambda, sampler, options, factors, counters, light);
   for (const LightVertex<N>& v : light) {
     positions.push_back(v.si.p);
-    photons.push_back({v.beta, v.si.wo, v.mis.vcm, v.mis.vm, v.length, lambda.secondary_terminated()});
+    photons.push_back({v.beta, v.si.wo, v.mis.vcm, v.mis.vm, v.length, v.hero_only});
   }
 }
 
 template <int N>
-SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, SampledWavelengths<N>& lambda, Sampler& sampler,
+SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, const SampledWavelengths<N>& lambda, Sampler& sampler,
                                  const PathOptions& options, const VcmIteration<N>* vcm, SplatBuffer& splats,
                                  RayCounters& counters, uint64_t& invalid) {
   const MisFactors factors = vcm ? vcm->factors() : MisFactors{};
   thread_local std::vector<LightVertex<N>> light;
-  trace_light_path(scene, lambda, sampler, options, factors, counters, light);
+  SampledWavelengths<N> light_lambda = lambda, camera_lambda = lambda;  // each subpath terminates its own
+  trace_light_path(scene, light_lambda, sampler, options, factors, counters, light);
+  // t = 1: the light path seen by the camera.
+  for (const LightVertex<N>& v : light) splat_to_camera(scene, v, factors, lambda, splats, counters, invalid);
 
   const World& world = scene.world;
   const PowerLightSampler& lights = world.light_sampler();
-  SampledSpectrum<N> L(0.f), beta(1.f);
-  SampledSpectrum<N> merged_hero(0.f);  // merges with hero-only photons (vcm.h)
+  // Contributions valid for all lanes, and those only the hero wavelength could make: a camera
+  // vertex after a dispersive interface, or a light vertex after one (or a photon).
+  SampledSpectrum<N> L(0.f), hero(0.f), beta(1.f);
+  const auto add = [&](const SampledSpectrum<N>& c, bool hero_only) { (hero_only ? hero : L) += c; };
   MisSums m{mis(scene.light_paths / scene.camera.ray_density(ray)), 0.f, 0.f};
   float eta_scale = 1.f;  // Π η² of the refractions so far: undoes radiance scaling for roulette
   MediumStack media;
   // s = 0: a light the camera path reached; full weight when seen directly (eq. 38).
   const auto add_emitted = [&](int depth, const SampledSpectrum<N>& Le, float direct_pdf, float emission_pdf) {
-    L += depth == 0 ? beta * Le : beta * Le / (1.f + mis(direct_pdf) * m.vcm + mis(emission_pdf) * m.vc);
+    add(depth == 0 ? beta * Le : beta * Le / (1.f + mis(direct_pdf) * m.vcm + mis(emission_pdf) * m.vc),
+        camera_lambda.secondary_terminated());
   };
 
   for (int depth = 0;; ++depth) {
     sampler.start_bounce(depth);
     ++(depth == 0 ? counters.primary : counters.secondary);
     const auto si = world.intersect(ray);
-    if (scene.media) beta *= media.transmittance(si ? si->t : kInfinity, lambda);
+    if (scene.media) beta *= media.transmittance(si ? si->t : kInfinity, camera_lambda);
     if (!si) {
       if (const Light* env = world.environment()) {
         const float pick = lights.pmf(uint32_t(world.environment_light())), pdf = environment_pdf(*env, ray.d);
-        add_emitted(depth, environment_Le(*env, ray.d, lambda), pick * pdf, pick * pdf * scene.disk.pdf());
+        add_emitted(depth, environment_Le(*env, ray.d, camera_lambda), pick * pdf, pick * pdf * scene.disk.pdf());
       }
       break;
     }
@@ -253,27 +265,31 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, SampledWavelen
       if (std::get<AreaLight>(light).emits_towards(si->wo)) {
         const float pick = lights.pmf(uint32_t(index));
         const EmissionPdf e = pdf_le(light, si->wo, scene.disk);
-        add_emitted(depth, material.emitted(si->at, lambda), pick * e.pdf_pos, pick * e.product());
+        add_emitted(depth, material.emitted(si->at, camera_lambda), pick * e.pdf_pos, pick * e.product());
       }
     }
     if (depth == options.max_depth || scene.light_tracing) break;
 
     const bool entering = si->front_face();
     const Dielectric* front = scene.media ? media.front_dielectric(material, entering) : nullptr;
-    const Bsdf<N> bsdf = make_bsdf<N>(material, si->at, lambda, front);
+    const Bsdf<N> bsdf = make_bsdf<N>(material, si->at, camera_lambda, front);
     const Frame frame = si->shading_frame();
     const Vec3f wo = frame.to_local(si->wo);
     if (!bsdf_is_specular(bsdf)) {
-      L += beta * connect_light(scene, *si, frame, bsdf, wo, m, factors, media, lambda, sampler, counters);
+      const bool camera_hero = camera_lambda.secondary_terminated();
+      add(beta * connect_light(scene, *si, frame, bsdf, wo, m, factors, media, camera_lambda, sampler, counters),
+          camera_hero);
       // Paths of at most max_depth + 1 segments, as the path tracer's.
       for (const LightVertex<N>& v : light) {
         if (v.length + depth + 2 > options.max_depth + 1) break;
-        L += beta * connect_vertices(scene, *si, frame, bsdf, wo, m, factors, media, v, lambda, counters);
+        add(beta * connect_vertices(scene, *si, frame, bsdf, wo, m, factors, media, v, camera_lambda, counters),
+            camera_hero || v.hero_only);
       }
       if (vcm) {
-        SampledSpectrum<N> all(0.f), hero(0.f);
-        vcm->merge(*si, frame, bsdf, wo, m, depth, options.max_depth, all, hero);
-        L += beta * all, merged_hero += beta * hero;
+        SampledSpectrum<N> all(0.f), hero_photons(0.f);
+        vcm->merge(*si, frame, bsdf, wo, m, depth, options.max_depth, all, hero_photons);
+        add(beta * all, camera_hero);
+        hero += beta * hero_photons;
       }
     }
 
@@ -297,15 +313,11 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, SampledWavelen
     if (beta.is_zero()) break;
   }
 
-  // Hero-only merges count in the hero lane, N times over while the lanes are all alive.
-  L[0] += merged_hero[0] * (lambda.secondary_terminated() ? 1.f : float(N));
-  // t = 1, with the wavelengths as both subpaths left them.
-  for (const LightVertex<N>& v : light) splat_to_camera(scene, v, factors, lambda, splats, counters, invalid);
-  return L;
+  return L + hero_lane(hero);
 }
 
 #define PRISM_INSTANTIATE(N)                                                                                           \
-  template SampledSpectrum<N> bdpt_radiance<N>(const BdptScene&, Ray, SampledWavelengths<N>&, Sampler&,                \
+  template SampledSpectrum<N> bdpt_radiance<N>(const BdptScene&, Ray, const SampledWavelengths<N>&, Sampler&,          \
                                                const PathOptions&, const VcmIteration<N>*, SplatBuffer&, RayCounters&, \
                                                uint64_t&);                                                             \
   template void trace_photons<N>(const BdptScene&, SampledWavelengths<N>, Sampler&, const PathOptions&,                \

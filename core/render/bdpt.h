@@ -5,11 +5,12 @@
 // splatted), combined by the power heuristic with the recursive weights of Georgiev et al. 2012
 // (path_vertex.h).
 //
-// Wavelengths: both subpaths carry the camera sample's wavelengths. Every contribution, splats
-// included, is turned into XYZ only after both subpaths are traced, with the wavelengths as they
-// then are: if either subpath met a dispersive interface, the secondary wavelengths are
-// terminated for the whole sample (as for the path tracer: the decision is made before any
-// λ-dependent direction is taken, so each lane's estimate stays unbiased).
+// Wavelengths: both subpaths carry the camera sample's wavelengths, and each terminates its own
+// secondary wavelengths at a dispersive interface (the decision is made before any λ-dependent
+// direction is taken). A contribution counts for all lanes when neither of the subpath prefixes
+// it is made of met such an interface, and for the hero lane alone (N times over) otherwise, so
+// that a light path through the prism does not turn the camera path's own estimates into the
+// hero wavelength's too; each strategy's estimate stays unbiased lane by lane.
 
 #include "base/sampler.h"
 #include "render/camera.h"
@@ -38,7 +39,7 @@ struct BdptScene {
 // with `vcm`, merging with the iteration's photons too (vcm.h). Counts dropped (NaN, Inf)
 // splats in `invalid`.
 template <int N>
-SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, SampledWavelengths<N>& lambda, Sampler& sampler,
+SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, const SampledWavelengths<N>& lambda, Sampler& sampler,
                                  const PathOptions& options, const VcmIteration<N>* vcm, SplatBuffer& splats,
                                  RayCounters& counters, uint64_t& invalid);
 

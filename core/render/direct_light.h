@@ -31,8 +31,9 @@ std::optional<LightContribution<N>> light_contribution(const World& world, const
                                                        const Frame& frame, const Bsdf<N>& bsdf, const Vec3f& wo,
                                                        const Light& light, Vec2f u, const SampledWavelengths<N>& lambda,
                                                        RayCounters& counters,
-                                                       const Vec3f& reflect_axis = {0.f, 0.f, 0.f}) {
-  const auto sample = sample_li(light, LightSampleContext{si.p, si.p_error, si.n, reflect_axis}, u, lambda);
+                                                       const Vec3f& reflect_axis = {0.f, 0.f, 0.f},
+                                                       const PathSky<N>* sky = nullptr) {
+  const auto sample = sample_li(light, LightSampleContext{si.p, si.p_error, si.n, reflect_axis}, u, lambda, sky);
   if (!sample || sample->L.is_zero()) return std::nullopt;
   const Vec3f wi = frame.to_local(sample->wi);
   if (wrong_side(si, sample->wi, wi.z * wo.z < 0)) return std::nullopt;

@@ -12,7 +12,8 @@ namespace {
 template <int N>
 SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& si, const Frame& frame,
                                  const Bsdf<N>& bsdf, const Vec3f& wo, const Vec3f& reflect_axis,
-                                 const SampledWavelengths<N>& lambda, Sampler& sampler, RayCounters& counters) {
+                                 const SampledWavelengths<N>& lambda, const PathSky<N>& sky, Sampler& sampler,
+                                 RayCounters& counters) {
   const float u_light = sampler.get_1d();
   const Vec2f u = sampler.get_2d();
   const PowerLightSampler& ls = world.light_sampler();
@@ -20,7 +21,7 @@ SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& s
   const uint32_t index = ls.sample(u_light);
   const float pmf = ls.pmf(index);
   const Light& light = world.lights()[index];
-  const auto c = light_contribution(world, si, frame, bsdf, wo, light, u, lambda, counters, reflect_axis);
+  const auto c = light_contribution(world, si, frame, bsdf, wo, light, u, lambda, counters, reflect_axis, &sky);
   if (!c || pmf == 0.f) return SampledSpectrum<N>(0.f);
   const float light_pdf = pmf * c->light_pdf;
   const float weight = is_delta(light) ? 1.f : power_heuristic(light_pdf, c->bsdf_pdf);
@@ -39,6 +40,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
   float eta_scale = 1.f;      // Π η² of the refractions so far: undoes radiance scaling for roulette
   MediumStack media;
   const PowerLightSampler& light_sampler = world.light_sampler();
+  const PathSky<N> sky(world.environment(), lambda);
 
   for (int depth = 0;; ++depth) {
     sampler.start_bounce(depth);
@@ -60,7 +62,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
 
     if (!si) {
       if (const Light* env = world.environment())
-        add_emitted(environment_Le(*env, ray.d, lambda), world.environment_light(),
+        add_emitted(environment_Le(*env, ray.d, lambda, &sky), world.environment_light(),
                     [&] { return environment_pdf(*env, ray.d, reflect_axis_prev); });
       break;
     }
@@ -80,7 +82,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, SampledWavelengths
     const Vec3f wo = frame.to_local(si->wo);
     const Vec3f reflect_axis = material.transmits() ? Vec3f(0.f, 0.f, 0.f) : wo.z < 0 ? -frame.z : frame.z;
     if (options.next_event && !bsdf_is_specular(bsdf))
-      L += beta * sample_direct(world, *si, frame, bsdf, wo, reflect_axis, lambda, sampler, counters);
+      L += beta * sample_direct(world, *si, frame, bsdf, wo, reflect_axis, lambda, sky, sampler, counters);
 
     const float uc = sampler.get_1d();
     const auto bs = bsdf_sample_f(bsdf, wo, uc, sampler.get_2d());

@@ -61,7 +61,8 @@ struct LightVertex {
   Vec3f wo;                 // local: towards the previous vertex, where the light came from
   SampledSpectrum<N> beta;  // Le · Π f·cos / pdf from the light to here (importance transport)
   MisSums mis;
-  int length;  // segments from the light
+  int length;      // segments from the light
+  bool hero_only;  // a dispersive interface on the way here left only the hero wavelength valid
 
   // The factor of leaving towards w (world, unit) that makes the adjoint BSDF with shading
   // normals: f(w, wo) · |ns·wo| · |ng·w| / |ng·wo| (Veach 1997 §5.3, eq. 5.19). f takes the

@@ -12,7 +12,7 @@
 //
 // Wavelengths: all paths of an iteration carry the same wavelengths (drawn per iteration from the
 // sampler, stratified over iterations), so a photon and a camera vertex always agree lane by
-// lane. A photon whose light path met a dispersive interface carries only the hero wavelength;
+// lane. A photon after a dispersive interface on its light path carries only the hero wavelength;
 // merged with a camera path that kept all lanes, it counts in the hero lane with weight N
 // (its lane's pdf is p(λ₀)/N), so every lane's estimate stays consistent.
 
@@ -30,7 +30,7 @@ struct Photon {
   Vec3f wi;                 // world, unit: towards where the light came from
   float vcm, vm;            // the light subpath's MIS sums (path_vertex.h)
   int length;               // segments from the light
-  bool hero_only;           // its light path terminated the secondary wavelengths
+  bool hero_only;           // its light path met a dispersive interface before it
 };
 
 template <int N>

@@ -10,6 +10,7 @@
 
 #include "base/log.h"
 #include "materials/catalogue.h"
+#include "render/error_estimate.h"
 #include "scene/gltf_loader.h"
 #include "support/test_scenes.h"
 
@@ -271,5 +272,33 @@ TEST_CASE("bdpt, vcm and the path tracer agree on the dispersive prism in mean a
     const auto img = test::render_rgb(scene, camera, 24, 24, 1024, 16, 2, 0, integrator);
     CHECK(img.stats.invalid_samples == 0);
     check_agree(img, path, 0.03);
+  }
+}
+
+TEST_CASE("bdpt, vcm: a light path through a dispersive sphere leaves the directly seen light all its wavelengths") {
+  // The camera sees only a black emitter; a dispersive glass sphere beside it, out of view, is
+  // where many light paths go. Every contribution but the emitter's own is zero, so the pixels
+  // must be the path tracer's (bdpt: same sampler streams) or all alike (vcm: an iteration's
+  // wavelengths are the whole image's), as they were not while a light path through the sphere
+  // made its whole sample hero-only.
+  Scene scene;
+  Material light{.name = "black emitter", .kind = DiffuseMaterial{ConstantSpectrum{0.f}}};
+  light.emission = RgbIlluminantSpectrum(Rgb{1.f, 0.7f, 0.4f});
+  scene.materials.push_back(light);
+  scene.materials.push_back(glass(AbbeIor{1.7f, 20.f}));
+  test::add_mesh(scene, test::make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 0));
+  test::add_mesh(scene, test::make_icosphere({2.5f, 0, 1.5f}, 1.f, 3, 1));
+  const CameraDesc camera = test::look_at({0, 0, 3}, {0, 0, 0}, 20.f);
+  const auto path = test::render_rgb(scene, camera, 16, 16, 16, 16, 1);
+  const auto bdpt = test::render_rgb(scene, camera, 16, 16, 16, 16, 1, 0, IntegratorKind::bdpt);
+  const auto vcm = test::render_rgb(scene, camera, 16, 16, 16, 16, 1, 0, IntegratorKind::vcm);
+  CHECK(bdpt.stats.rays.secondary > 0);  // light paths were traced
+  for (size_t i = 0; i < path.rgb.size(); ++i) {
+    INFO("value " << i << ": path " << path.rgb[i] << ", bdpt " << bdpt.rgb[i] << ", vcm " << vcm.rgb[i]);
+    REQUIRE(path.rgb[i] > 0.f);
+    // (The path tracer takes a second, independent set of samples in its error estimate's pixels.)
+    const int x = int(i / 3 % 16), y = int(i / 3 / 16);
+    if (!replicated_pixel({x, y}, 1)) CHECK(bdpt.rgb[i] == Approx(path.rgb[i]).epsilon(1e-5));
+    CHECK(vcm.rgb[i] == Approx(vcm.rgb[i % 3]).epsilon(1e-5));
   }
 }
