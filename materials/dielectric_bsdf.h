@@ -78,7 +78,7 @@ class DielectricBsdf {
         const auto eta = [&](int i) { return lanes_->eta ? (*lanes_->eta)[i] : eta_; };
         SampledSpectrum<N> R;
         if (lanes_->film)
-          R = lanes_->film->reflectance(c, [&](int i) { return std::complex<float>(eta(i)); });
+          R = lanes_->film->reflectance(c, eta);
         else
           for (int i = 0; i < N; ++i) R[i] = fresnel_dielectric(c, eta(i));
         for (int i = 0; i < N; ++i) R[i] = wall(specular_ * R[i]);

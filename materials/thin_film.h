@@ -20,6 +20,7 @@
 #include <cmath>
 #include <complex>
 #include <optional>
+#include <type_traits>
 
 #include "base/math.h"
 #include "materials/albedo_tables.h"
@@ -37,59 +38,62 @@ struct ThinFilm {
 
 // The film's two interfaces for light arriving from the ambient at cos θ_a: everything of Airy's
 // sum but the wavelength, in float (within 4·10⁻⁵ of the double-precision sum at any thickness up
-// to 1.2 µm). Complex arithmetic is written out where the library's would call its slow,
-// NaN-guarding routines (division, square root).
+// to 1.2 µm). Complex arithmetic is written out (mul, norm, ratio, root): the library's products
+// guard against NaN with a call per product, and its norm is |z|² through a scaled |z|.
 struct FilmInterfaces {
   using C = std::complex<float>;
   // The ambient | film interface: what the lanes of one film index and ambient share.
   struct Top {
     float s2;    // (n_a sin θ_a)², conserved across the layers
-    C q_f, n2f;  // n_f cos θ_f (the phase is e^{i k q_f}, k = 4π d / λ) and n_f²
+    float n2f;   // n_f²
+    C q_f;       // n_f cos θ_f (the phase is e^{i k q_f}, k = 4π d / λ)
     C r_s, r_p;  // amplitude reflection coefficients, s and p
     Top(float cos_theta, float n_ambient, float n_film) {
       const float c = std::min(std::abs(cos_theta), 1.f);
       s2 = n_ambient * n_ambient * (1 - c * c);
       n2f = n_film * n_film;
-      q_f = s2 == 0 ? C(n_film) : root(n2f - s2);
-      const C q_a(n_ambient * c), n2a(n_ambient * n_ambient);
-      r_s = ratio(q_a, q_f), r_p = ratio(n2f * q_a, n2a * q_f);
+      q_f = s2 == 0 ? C(n_film) : root(C(n2f - s2));
+      const float q_a = n_ambient * c;
+      r_s = ratio(C(q_a), q_f), r_p = ratio(C(n2f * q_a), q_f * (n_ambient * n_ambient));
     }
   };
   C r_af_s, r_af_p, r_fb_s, r_fb_p, q_f;
 
   FilmInterfaces(const Top& top, C n_base) : r_af_s(top.r_s), r_af_p(top.r_p), q_f(top.q_f) {
-    const C n2b = n_base * n_base, q_b = top.s2 == 0 ? n_base : root(n2b - top.s2);
-    r_fb_s = ratio(q_f, q_b), r_fb_p = ratio(n2b * q_f, top.n2f * q_b);
+    const C n2b = mul(n_base, n_base), q_b = top.s2 == 0 ? n_base : root(n2b - top.s2);
+    r_fb_s = ratio(q_f, q_b), r_fb_p = ratio(mul(n2b, q_f), q_b * top.n2f);
   }
   FilmInterfaces(float cos_theta, float n_ambient, float n_film, C n_base)
       : FilmInterfaces(Top(cos_theta, n_ambient, n_film), n_base) {}
 
   // Unpolarised reflectance for the phase constant k = 4π d / λ (k = 0: the bare interface).
   float reflectance(float k) const {
-    C phase(1);
-    if (k != 0) {
-      const float a = k * q_f.real();
-      phase = C(std::cos(a), std::sin(a));
-      if (q_f.imag() != 0) phase *= std::exp(-k * q_f.imag());  // evanescent in the film
-    }
-    return (airy(r_af_s, r_fb_s * phase) + airy(r_af_p, r_fb_p * phase)) / 2;
+    if (k == 0) return (airy(r_af_s, r_fb_s) + airy(r_af_p, r_fb_p)) / 2;
+    const float a = k * q_f.real();
+    C phase(std::cos(a), std::sin(a));
+    if (q_f.imag() != 0) phase *= std::exp(-k * q_f.imag());  // evanescent in the film
+    return (airy(r_af_s, mul(r_fb_s, phase)) + airy(r_af_p, mul(r_fb_p, phase))) / 2;
   }
 
  private:
+  static C mul(C a, C b) {
+    return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
+  }
+  static float norm(C z) { return z.real() * z.real() + z.imag() * z.imag(); }
   // |r_1 + z|² / |1 + r_1 z|², z = r_2 e^{2iβ}; a vanishing denominator is the grazing limit, 1.
   static float airy(C r1, C z) {
-    const float den = std::norm(1.f + r1 * z);
-    return den == 0 ? 1.f : std::min(1.f, std::norm(r1 + z) / den);
+    const float den = norm(1.f + mul(r1, z));
+    return den == 0 ? 1.f : std::min(1.f, norm(r1 + z) / den);
   }
   // (a − b) / (a + b) as (a − b)(a + b)* / |a + b|².
   static C ratio(C a, C b) {
-    const float den = std::norm(a + b);
-    return den == 0 ? C(1) : (a - b) * std::conj(a + b) / den;
+    const float den = norm(a + b);
+    return den == 0 ? C(1) : mul(a - b, std::conj(a + b)) / den;
   }
   // The principal square root, from the larger of its parts (no cancellation).
   static C root(C x) {
     if (x.imag() == 0) return x.real() >= 0 ? C(std::sqrt(x.real()), 0) : C(0, std::sqrt(-x.real()));
-    const float m = std::sqrt(std::norm(x));
+    const float m = std::sqrt(norm(x));
     if (x.real() >= 0) {
       const float re = std::sqrt((m + x.real()) / 2);
       return {re, x.imag() / (2 * re)};
@@ -166,6 +170,8 @@ struct FilmLanes {
   // dielectric base. Lanes of the same indices share the interfaces' coefficients.
   template <typename BaseIndex>
   SampledSpectrum<N> reflectance(float cos_theta, const BaseIndex& base) const {
+    if constexpr (std::is_floating_point_v<std::invoke_result_t<BaseIndex, int>>)
+      if (const auto R = real_reflectance(cos_theta, base)) return *R;
     using C = std::complex<float>;
     SampledSpectrum<N> R;
     std::optional<FilmInterfaces::Top> top;
@@ -187,6 +193,35 @@ struct FilmLanes {
         bare = f->reflectance(0);
       }
       R[i] = bare + weight * (f->reflectance(k[i]) - bare);
+    }
+    return R;
+  }
+
+ private:
+  // The same in real arithmetic, for light from the ambient onto a dielectric base (index eta(i))
+  // through a film in which it propagates (q_f, q_b > 0): every amplitude coefficient is then real
+  // and the phase of modulus 1, so per polarisation, with φ = k q_f,
+  //   R = |r_af + r_fb e^{iφ}|² / |1 + r_af r_fb e^{iφ}|²
+  //     = ((r_af + r_fb cos φ)² + (r_fb sin φ)²) / ((1 + r_af r_fb cos φ)² + (r_af r_fb sin φ)²).
+  // Nothing when some lane falls outside that case (the complex sum above takes it).
+  template <typename Eta>
+  std::optional<SampledSpectrum<N>> real_reflectance(float cos_theta, const Eta& eta) const {
+    if (cos_theta < 0) return std::nullopt;
+    const float c = std::min(cos_theta, 1.f), s2 = 1 - c * c;
+    SampledSpectrum<N> R;
+    for (int i = 0; i < N; ++i) {
+      const float n2f = ior[i] * ior[i], n2b = eta(i) * eta(i);
+      if (!(n2f > s2 && n2b > s2)) return std::nullopt;
+      const float q_f = std::sqrt(n2f - s2), q_b = std::sqrt(n2b - s2);
+      const float af_s = (c - q_f) / (c + q_f), af_p = (n2f * c - q_f) / (n2f * c + q_f);
+      const float fb_s = (q_f - q_b) / (q_f + q_b), fb_p = (n2b * q_f - n2f * q_b) / (n2b * q_f + n2f * q_b);
+      const float bare = (sqr((af_s + fb_s) / (1 + af_s * fb_s)) + sqr((af_p + fb_p) / (1 + af_p * fb_p))) / 2;
+      const float phi = k[i] * q_f, cos_phi = std::cos(phi), sin_phi = std::sin(phi);
+      const auto airy = [&](float r1, float r2) {
+        const float den = sqr(1 + r1 * r2 * cos_phi) + sqr(r1 * r2 * sin_phi);
+        return den == 0 ? 1.f : std::min(1.f, (sqr(r1 + r2 * cos_phi) + sqr(r2 * sin_phi)) / den);
+      };
+      R[i] = bare + weight * ((airy(af_s, fb_s) + airy(af_p, fb_p)) / 2 - bare);
     }
     return R;
   }

@@ -19,9 +19,10 @@ undimmed base, and Blender's importer adds a Velvet BSDF (Ashikhmin's, not the C
 Principled BSDF with an Add Shader: the base keeps 1.000 of its light under both. The layers' own
 reflections agree for the coat (F(1) = 0.04 in both) and differ for the sheen (the two fibre
 distributions). The same holds, smaller, for the base's own specular layer (specularFactor 1):
-Prism's diffuse keeps 1 − E(μ_o) of its light under it, Cycles' all of it; but at roughness 1 that
-layer's own reflection in Prism is several times Cycles' (compensated GGX against Cycles 3.4's
-single-scattering one), so it does not explain SpecularTest's darker Prism image.
+Prism's diffuse keeps 1 − E(μ_o) of its light under it (0.986), Cycles' all of it; that layer's own
+reflection at roughness 1 is 0.079 in Prism and 0.013 in Cycles 3.4 (single scattering): Prism's is
+a thin wall's two faces (the plane has no volume; tools/specular_cycles.py), 0.014 with that fixed.
+SpecularTest's difference is tools/specular_cycles.py's.
 
     tools/layering_cycles.py [--spp 64] [--size 32] [--out out/layering_cycles]
 

@@ -105,3 +105,36 @@ TEST_CASE("thin film: the build-time excess table is the direct computation, and
     CHECK(worst <= x + 1e-4);
   }
 }
+
+TEST_CASE("thin film: each lane of a path equals the transfer-matrix reference, over a dielectric and a metal") {
+  // The lanes' own base indices (a specular colour's), from outside (the real-arithmetic sum) and
+  // from inside the dielectric (the complex one), and a metal's n + ik, blended by the weight.
+  const auto lambda = SampledWavelengths<8>::sample({0.37f, 0.2f});
+  const MeasuredMetal au = MaterialCatalogue::standard().metal("Au");
+  for (float d : {0.f, 137.f, 250.f, 1200.f})
+    for (float nf : {1.3f, 1.6f, 2.4f})
+      for (float weight : {1.f, 0.5f}) {
+        const FilmLanes<8> film(ThinFilm{weight, d, nf}, lambda, SampledSpectrum<8>(1.f));
+        const auto eta = [](int i) { return 1.2f + 0.1f * i; };
+        const auto metal = [&](int i) {
+          return std::complex<float>(evaluate(au.n, lambda[i]), evaluate(au.k, lambda[i]));
+        };
+        for (float cos_a : {1.f, 0.7f, 0.3f, 0.05f}) {
+          const SampledSpectrum<8> outside = film.reflectance(cos_a, eta), inside = film.reflectance(-cos_a, eta),
+                                   on_metal = film.reflectance(cos_a, metal);
+          for (int i = 0; i < 8; ++i) {
+            INFO("λ " << lambda[i] << " d " << d << " n_film " << nf << " weight " << weight << " cos " << cos_a);
+            const auto blend = [&](double filmed, double bare) { return bare + weight * (filmed - bare); };
+            CHECK(outside[i] ==
+                  Approx(blend(tmm(cos_a, lambda[i], d, 1, nf, eta(i)), tmm(cos_a, lambda[i], 0, 1, nf, eta(i))))
+                      .margin(1e-4));
+            CHECK(inside[i] ==
+                  Approx(blend(tmm(cos_a, lambda[i], d, eta(i), nf, 1), tmm(cos_a, lambda[i], 0, eta(i), nf, 1)))
+                      .margin(1e-4));
+            CHECK(on_metal[i] ==
+                  Approx(blend(tmm(cos_a, lambda[i], d, 1, nf, metal(i)), tmm(cos_a, lambda[i], 0, 1, nf, metal(i))))
+                      .margin(1e-4));
+          }
+        }
+      }
+}

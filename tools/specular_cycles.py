@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""Why SpecularTest renders darker in Prism than in Cycles (issue 12), on the smallest scene that
+shows it: a smooth black dielectric plane (glTF base colour 0, roughness 0) under a uniform white
+environment, tilted by θ from an orthographic camera, so that every pixel is the Fresnel
+reflectance at that one angle. Rendered with Prism and with Blender 3.4 Cycles (the harness in
+../shared/tools/cycles, which sets Principled v1's Specular from KHR_materials_specular) for
+specularFactor s = 0.2 and 1 and specularColorFactor c = 0.2, and compared with the two models:
+
+  glTF (KHR_materials_specular)   R = s · F(θ, η_c),  η_c the index of F0 = min(F0(1.5) · c, 1)
+                                  (the factor scales F0 and F90 alike: F90 = s)
+  Principled v1 (Cycles 3.4)      R = F(θ, η'),  η' the index of F0' = s · min(F0(1.5) · c, 1)
+                                  (Specular sets F0 alone; F90 stays 1)
+
+Cycles equals its model at every angle (2026-11-30: to 4 digits), and so does Prism with the fix
+of branch u12-thinwall. The models agree at normal incidence and for s = 1; for s < 1 glTF's
+reflection fades to s at grazing and Cycles' rises to 1 (s = 0.2 at 80°: 0.078 against 0.284):
+SpecularTest's first two rows (specularFactor and specularTexture below 1) are darker in Prism by
+that model difference. The scene also shows a Prism defect: a glTF material without
+KHR_materials_volume is thin-walled, and Prism gives the whole of such an opaque wall the two faces'
+reflectance R + T²R/(1 − R²) (0.077 instead of 0.040 at normal incidence), fixed on u12-thinwall.
+
+    tools/specular_cycles.py [--spp 16] [--size 16] [--out out/specular_cycles]
+
+Skips (exit 0) without ../shared or Blender.
+"""
+import argparse
+import base64
+import json
+import math
+import os
+import struct
+import sys
+
+from cycles_pair import add_common_args, harness, render_pair
+F0_15 = 0.04  # ((1.5 - 1) / (1.5 + 1))², the default index's normal reflectance
+
+
+def scene(theta_deg, factor, color):
+    """A 2 m square through the origin, tilted by θ about x, seen along −z from z = 1."""
+    p = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
+    blob = struct.pack("<12f", *[c for v in p for c in v]) + struct.pack("<12f", *[0, 0, 1] * 4) + \
+        struct.pack("<6I", 0, 1, 2, 0, 2, 3)
+    half = math.radians(theta_deg) / 2
+    specular = {"specularFactor": factor, "specularColorFactor": [color] * 3}
+    material = {"name": "plane", "extensions": {"KHR_materials_specular": specular},
+                "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0, "roughnessFactor": 0}}
+    return {
+        "asset": {"version": "2.0", "generator": "tools/specular_cycles.py"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"mesh": 0, "rotation": [math.sin(half), 0, 0, math.cos(half)]},
+                  {"camera": 0, "translation": [0, 0, 1]}],
+        "cameras": [{"type": "orthographic", "orthographic": {"xmag": 0.1, "ymag": 0.1, "znear": 0.01, "zfar": 10}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2, "material": 0}]}],
+        "materials": [material],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                       "min": [-1, -1, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+                      {"bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR"}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+                        {"buffer": 0, "byteOffset": 96, "byteLength": 24}],
+        "buffers": [{"byteLength": len(blob),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}],
+        "extensionsUsed": ["KHR_materials_specular"]}
+
+
+def fresnel(c, eta):
+    """Unpolarised Fresnel reflectance of a dielectric of relative index eta at cos θ = c."""
+    s2 = (1 - c * c) / eta ** 2
+    ct = (1 - s2) ** 0.5
+    rs, rp = (c - eta * ct) / (c + eta * ct), (eta * c - ct) / (eta * c + ct)
+    return (rs * rs + rp * rp) / 2
+
+
+def ior_of_f0(f0):
+    root = min(f0, 0.9999) ** 0.5
+    return (1 + root) / (1 - root)
+
+
+def mean_y(exrstats, path):
+    img = exrstats.read_exr(path)
+    names = exrstats.rgb_names(list(img["channels"]))
+    luma = (0.2126, 0.7152, 0.0722)
+    chans = [img["channels"][n] for n in names]
+    return sum(w * sum(c) / len(c) for w, c in zip(luma, chans))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--spp", type=int, default=16)
+    ap.add_argument("--size", type=int, default=16, help="image width and height (default 16)")
+    add_common_args(ap, "specular_cycles")
+    a = ap.parse_args()
+    a.harness = harness("specular_cycles", a.shared)
+    if a.harness is None:
+        return 0
+    import exrstats
+
+    common = ["--spp", str(a.spp), "--width", str(a.size), "--height", str(a.size), "--env", "1,1,1"]
+    print("Smooth black dielectric plane at θ from the view, white environment; %d spp, %dx%d; image means (Y)."
+          % (a.spp, a.size, a.size))
+    print("%-5s %-5s %4s %9s %9s %9s %9s" % ("s", "c", "θ", "Prism", "glTF", "Cycles", "Princ.v1"))
+    for factor, color in ((1.0, 1.0), (0.2, 1.0), (1.0, 0.2)):
+        for theta in (0, 60, 80):
+            work = os.path.join(a.out, "s%g_c%g_t%d" % (factor, color, theta))
+            os.makedirs(work, exist_ok=True)
+            gltf = os.path.join(work, "plane.gltf")
+            with open(gltf, "w") as f:
+                json.dump(scene(theta, factor, color), f, indent=1)
+            prism_exr, cycles_exr = render_pair("specular_cycles", a, gltf, ["--max-depth", "4"] + common,
+                                                ["--max-bounces", "3", "--filter", "box", "--filter-width", "1"] + common)
+            mu = math.cos(math.radians(theta))
+            f0 = min(F0_15 * color, 1.0)
+            gltf_model = factor * fresnel(mu, ior_of_f0(f0))
+            principled = fresnel(mu, ior_of_f0(factor * f0))
+            print("%-5g %-5g %4d %9.4f %9.4f %9.4f %9.4f" % (factor, color, theta, mean_y(exrstats, prism_exr), gltf_model,
+                                                            mean_y(exrstats, cycles_exr), principled))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
