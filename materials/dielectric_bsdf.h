@@ -7,7 +7,9 @@
 // where the last 1/η'² is the radiance scaling across the interface (Veach 1997, §5.2).
 // Thin wall (a sheet with no interior): the two interfaces' inter-reflections sum to
 // R' = R + T²R/(1 − R²), T' = 1 − R' (pbrt-v4 §9.5.1), and light leaves on the far side in the
-// mirror image of the reflection lobe (straight through when smooth).
+// mirror image of the reflection lobe (straight through when smooth). Only the clear share of a
+// wall (`transmission`) has a far face: an opaque wall is the one interface over its base (glTF
+// materials without KHR_materials_volume are thin-walled, most of them opaque).
 // `transmission` ∈ [0, 1] weights the transmitted lobe (glTF's transmissionFactor; the rest
 // of the light goes to a diffuse base elsewhere); `tint` colours transmitted light; `specular`
 // scales the reflectance, s·F, leaving 1 − s·F to pass (KHR_materials_specular's factor).
@@ -62,7 +64,7 @@ class DielectricBsdf {
         roughness_(compensate_ ? SpecularAlbedo::roughness(distribution.alpha()) : SpecularAlbedo::Roughness{}),
         eta_(eta),
         tint_(tint),
-        thin_(thin),
+        thin_(thin && transmission > 0),  // an opaque wall is the one interface over its base
         transmission_(transmission),
         specular_(specular),
         lanes_(lanes) {}
@@ -246,8 +248,11 @@ class DielectricBsdf {
     return BsdfSample<N>{t->weight / abs_cos_theta(t->wi), t->wi, T / (R + T), true, true, t->eta};
   }
 
-  // A thin wall's reflectance from one face's: R' = R + T²R/(1 − R²).
-  float wall(float R) const { return thin_ && R < 1 ? R + sqr(1 - R) * R / (1 - R * R) : R; }
+  // A thin wall's reflectance from one face's: where the wall is clear (the transmission share t),
+  // the far face's inter-reflections add to the near face's, R' = R + T²R/(1 − R²); where it is not
+  // (1 − t: the diffuse base under the interface), the near face reflects alone. (Applied to the
+  // whole of an opaque wall, R' made a white plastic reflect 1.037 of the light at normal incidence.)
+  float wall(float R) const { return thin_ && R < 1 ? R + transmission_ * sqr(1 - R) * R / (1 - R * R) : R; }
 
   TrowbridgeReitz distribution_;
   bool smooth_, compensate_;
