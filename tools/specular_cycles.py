@@ -11,13 +11,12 @@ specularFactor s = 0.2 and 1 and specularColorFactor c = 0.2, and compared with 
   Principled v1 (Cycles 3.4)      R = F(θ, η'),  η' the index of F0' = s · min(F0(1.5) · c, 1)
                                   (Specular sets F0 alone; F90 stays 1)
 
-Cycles equals its model at every angle (2026-11-30: to 4 digits), and so does Prism with the fix
-of branch u12-thinwall. The models agree at normal incidence and for s = 1; for s < 1 glTF's
+Cycles equals its model at every angle (2026-11-30: to 4 digits), and so does Prism. The models agree at normal incidence and for s = 1; for s < 1 glTF's
 reflection fades to s at grazing and Cycles' rises to 1 (s = 0.2 at 80°: 0.078 against 0.284):
 SpecularTest's first two rows (specularFactor and specularTexture below 1) are darker in Prism by
-that model difference. The scene also shows a Prism defect: a glTF material without
-KHR_materials_volume is thin-walled, and Prism gives the whole of such an opaque wall the two faces'
-reflectance R + T²R/(1 − R²) (0.077 instead of 0.040 at normal incidence), fixed on u12-thinwall.
+that model difference. The scene also showed a Prism defect, since fixed: a glTF material without KHR_materials_volume is
+thin-walled, and Prism gave the whole of such an opaque wall the two faces' reflectance
+R + T²R/(1 − R²) (0.077 instead of 0.040 at normal incidence).
 
     tools/specular_cycles.py [--spp 16] [--size 16] [--out out/specular_cycles]
 
