@@ -167,10 +167,11 @@ struct FilmLanes {
 
   // Each lane's reflectance: the bare base's blended by the weight with the filmed one, for the
   // base's relative index base(i) (complex for a metal). cos_theta < 0: light from inside a
-  // dielectric base. Lanes of the same indices share the interfaces' coefficients.
+  // dielectric base. In the complex sum, lanes of the same indices share the interfaces'
+  // coefficients.
   template <typename BaseIndex>
   SampledSpectrum<N> reflectance(float cos_theta, const BaseIndex& base) const {
-    if constexpr (std::is_floating_point_v<std::invoke_result_t<BaseIndex, int>>)
+    if constexpr (std::is_floating_point_v<std::remove_cvref_t<std::invoke_result_t<BaseIndex, int>>>)
       if (const auto R = real_reflectance(cos_theta, base)) return *R;
     using C = std::complex<float>;
     SampledSpectrum<N> R;

@@ -20,8 +20,9 @@ Principled BSDF with an Add Shader: the base keeps 1.000 of its light under both
 reflections agree for the coat (F(1) = 0.04 in both) and differ for the sheen (the two fibre
 distributions). The same holds, smaller, for the base's own specular layer (specularFactor 1):
 Prism's diffuse keeps 1 − E(μ_o) of its light under it (0.986), Cycles' all of it; that layer's own
-reflection at roughness 1 is 0.079 in Prism and 0.013 in Cycles 3.4 (single scattering): Prism's is
-a thin wall's two faces (the plane has no volume; tools/specular_cycles.py), 0.014 with that fixed.
+reflection at roughness 1 is 0.014 in Prism and 0.013 in Cycles 3.4 (single scattering); it was 0.079
+in Prism while an opaque thin wall reflected as two faces (the plane has no volume;
+tools/specular_cycles.py).
 SpecularTest's difference is tools/specular_cycles.py's.
 
     tools/layering_cycles.py [--spp 64] [--size 32] [--out out/layering_cycles]

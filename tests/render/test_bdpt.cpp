@@ -2,7 +2,7 @@
 // against scenes of known answer and against the path tracer on scenes it renders well (no
 // caustics); light tracing alone (the t = 1 strategy) against the analytic irradiance of a point
 // and of an area light; determinism across thread counts; no NaN or Inf on the stress scenes and
-// the caustic report scenes.
+// the caustic report scenes; the wavelengths each integrator keeps after a dispersive interface.
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -300,5 +300,26 @@ TEST_CASE("bdpt, vcm: a light path through a dispersive sphere leaves the direct
     const int x = int(i / 3 % 16), y = int(i / 3 / 16);
     if (!replicated_pixel({x, y}, 1)) CHECK(bdpt.rgb[i] == Approx(path.rgb[i]).epsilon(1e-5));
     CHECK(vcm.rgb[i] == Approx(vcm.rgb[i % 3]).epsilon(1e-5));
+  }
+}
+
+TEST_CASE("path tracer: the light a path saw before a dispersive interface keeps all its wavelengths") {
+  // An emitting glass quad alone in the dark: the camera sees its emission, then the path goes on
+  // into the glass and out into nothing. A dispersive index must give the pixels of a constant
+  // one bit for bit, as it did not while meeting the dispersive surface made the whole sample
+  // hero-only.
+  const auto render = [](IorModel ior) {
+    Scene scene;
+    Material emitter = glass(std::move(ior));
+    emitter.emission = RgbIlluminantSpectrum(Rgb{1.f, 0.7f, 0.4f});
+    scene.materials.push_back(emitter);
+    test::add_mesh(scene, test::make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 0));
+    return test::render_rgb(scene, test::look_at({0, 0, 3}, {0, 0, 0}, 20.f), 16, 16, 16, 16, 1);
+  };
+  const auto dispersive = render(AbbeIor{1.7f, 20.f}), constant = render(ConstantIor{1.7f});
+  for (size_t i = 0; i < constant.rgb.size(); ++i) {
+    INFO("value " << i << ": dispersive " << dispersive.rgb[i] << ", constant " << constant.rgb[i]);
+    REQUIRE(constant.rgb[i] > 0.f);
+    CHECK(dispersive.rgb[i] == Approx(constant.rgb[i]).epsilon(1e-6));
   }
 }
