@@ -18,21 +18,15 @@ Skips (exit 0) without ../shared or Blender. tests/render/test_punctual_lights.c
 against the same thin-wall answer in every test run.
 """
 import argparse
-import base64
-import json
 import os
-import struct
 import sys
 
-from cycles_pair import add_common_args, harness, render_pair
+from cycles_pair import add_common_args, harness, plane_scene, render_pair
 DEPTH, HALF, INTENSITY, ETA = 0.05, 0.1, 1.0, 1.5  # light 5 cm from a 20 cm square, 1 cd, index 1.5
 
 
 def scene(kind, roughness):
     """A 2·HALF square at z = 0 facing +z, the point light DEPTH behind it (pane) or in front (plane)."""
-    p = [(-HALF, -HALF, 0), (HALF, -HALF, 0), (HALF, HALF, 0), (-HALF, HALF, 0)]
-    blob = struct.pack("<12f", *[c for v in p for c in v]) + struct.pack("<12f", *[0, 0, 1] * 4) + \
-        struct.pack("<6I", 0, 1, 2, 0, 2, 3)
     pbr = {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0, "roughnessFactor": roughness}
     if kind == "pane":
         material = {"name": "pane", "pbrMetallicRoughness": pbr, "doubleSided": True,
@@ -40,24 +34,8 @@ def scene(kind, roughness):
     else:
         material = {"name": "plane", "pbrMetallicRoughness": pbr,
                     "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}}
-    light_z = -DEPTH if kind == "pane" else DEPTH
-    return {
-        "asset": {"version": "2.0", "generator": "tools/lamp_pane.py"}, "scene": 0, "scenes": [{"nodes": [0, 1, 2]}],
-        "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 0, 1]},
-                  {"translation": [0, 0, light_z], "extensions": {"KHR_lights_punctual": {"light": 0}}}],
-        "cameras": [{"type": "orthographic", "orthographic": {"xmag": HALF, "ymag": HALF, "znear": 0.01, "zfar": 10}}],
-        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2, "material": 0}]}],
-        "materials": [material],
-        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
-                       "min": [-HALF, -HALF, 0], "max": [HALF, HALF, 0]},
-                      {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
-                      {"bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR"}],
-        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
-                        {"buffer": 0, "byteOffset": 96, "byteLength": 24}],
-        "buffers": [{"byteLength": len(blob),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}],
-        "extensionsUsed": ["KHR_lights_punctual"] + list(material["extensions"]),
-        "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": INTENSITY}]}}}
+    light = (-DEPTH if kind == "pane" else DEPTH, {"type": "point", "intensity": INTENSITY})
+    return plane_scene("tools/lamp_pane.py", material, half=HALF, view=HALF, light=light)
 
 
 # ----------------------------------------------------------------------------- the answers
@@ -133,13 +111,9 @@ def load(exrstats, np, path):
 
 
 def render(a, kind, roughness):
-    work = os.path.join(a.out, kind)
-    os.makedirs(work, exist_ok=True)
-    gltf = os.path.join(work, kind + ".gltf")
-    with open(gltf, "w") as f:
-        json.dump(scene(kind, roughness), f, indent=1)
     common = ["--spp", str(a.spp), "--width", str(a.size), "--height", str(a.size)]
-    return render_pair("lamp_pane", a, gltf, ["--no-energy-compensation"] + common,
+    return render_pair("lamp_pane", a, os.path.join(a.out, kind), scene(kind, roughness),
+                       ["--no-energy-compensation"] + common,
                        ["--lighting-mode", "COMPAT", "--filter", "box", "--filter-width", "1"] + common)
 
 

@@ -30,21 +30,15 @@ SpecularTest's difference is tools/specular_cycles.py's.
 Skips (exit 0) without ../shared or Blender.
 """
 import argparse
-import base64
-import json
 import os
-import struct
 import sys
 
-from cycles_pair import add_common_args, harness, render_pair
+from cycles_pair import add_common_args, fresnel, harness, mean_y, plane_scene, render_pair
 ETA = 1.5  # the clear coat's index (KHR_materials_clearcoat)
 
 
 def scene(rho, layer):
     """A 2 m square at z = 0 facing +z, filling an orthographic camera's view from z = 1."""
-    p = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
-    blob = struct.pack("<12f", *[c for v in p for c in v]) + struct.pack("<12f", *[0, 0, 1] * 4) + \
-        struct.pack("<6I", 0, 1, 2, 0, 2, 3)
     extensions = {"KHR_materials_specular": {"specularFactor": 1.0 if layer == "specular" else 0.0}}
     if layer == "coat":
         extensions["KHR_materials_clearcoat"] = {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.0}
@@ -52,29 +46,7 @@ def scene(rho, layer):
         extensions["KHR_materials_sheen"] = {"sheenColorFactor": [1.0, 1.0, 1.0], "sheenRoughnessFactor": 0.5}
     material = {"name": "plane", "extensions": extensions,
                 "pbrMetallicRoughness": {"baseColorFactor": [rho, rho, rho, 1], "metallicFactor": 0, "roughnessFactor": 1}}
-    return {
-        "asset": {"version": "2.0", "generator": "tools/layering_cycles.py"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
-        "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 0, 1]}],
-        "cameras": [{"type": "orthographic", "orthographic": {"xmag": 0.5, "ymag": 0.5, "znear": 0.01, "zfar": 10}}],
-        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2, "material": 0}]}],
-        "materials": [material],
-        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
-                       "min": [-1, -1, 0], "max": [1, 1, 0]},
-                      {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
-                      {"bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR"}],
-        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
-                        {"buffer": 0, "byteOffset": 96, "byteLength": 24}],
-        "buffers": [{"byteLength": len(blob),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}],
-        "extensionsUsed": list(extensions)}
-
-
-def fresnel(c, eta):
-    """Unpolarised Fresnel reflectance of a dielectric of relative index eta at cos θ = c."""
-    s2 = (1 - c * c) / eta ** 2
-    ct = (1 - s2) ** 0.5
-    rs, rp = (c - eta * ct) / (c + eta * ct), (eta * c - ct) / (eta * c + ct)
-    return (rs * rs + rp * rp) / 2
+    return plane_scene("tools/layering_cycles.py", material, view=0.5)
 
 
 def fresnel_average(eta, n=100000):
@@ -82,22 +54,10 @@ def fresnel_average(eta, n=100000):
     return sum(2 * fresnel((k + 0.5) / n, eta) * (k + 0.5) / n for k in range(n)) / n
 
 
-def mean_y(exrstats, path):
-    img = exrstats.read_exr(path)
-    names = exrstats.rgb_names(list(img["channels"]))
-    luma = (0.2126, 0.7152, 0.0722)
-    chans = [img["channels"][n] for n in names]
-    return sum(w * sum(c) / len(c) for w, c in zip(luma, chans))
-
-
 def render(a, exrstats, rho, layer):
-    work = os.path.join(a.out, "%s_%g" % (layer, rho))
-    os.makedirs(work, exist_ok=True)
-    gltf = os.path.join(work, "plane.gltf")
-    with open(gltf, "w") as f:
-        json.dump(scene(rho, layer), f, indent=1)
     common = ["--spp", str(a.spp), "--width", str(a.size), "--height", str(a.size), "--env", "1,1,1"]
-    prism_exr, cycles_exr = render_pair("layering_cycles", a, gltf, ["--max-depth", "4"] + common,
+    prism_exr, cycles_exr = render_pair("layering_cycles", a, os.path.join(a.out, "%s_%g" % (layer, rho)),
+                                        scene(rho, layer), ["--max-depth", "4"] + common,
                                         ["--max-bounces", "3", "--filter", "box", "--filter-width", "1"] + common)
     return mean_y(exrstats, prism_exr), mean_y(exrstats, cycles_exr)
 

@@ -23,63 +23,26 @@ R + T²R/(1 − R²) (0.077 instead of 0.040 at normal incidence).
 Skips (exit 0) without ../shared or Blender.
 """
 import argparse
-import base64
-import json
 import math
 import os
-import struct
 import sys
 
-from cycles_pair import add_common_args, harness, render_pair
+from cycles_pair import add_common_args, fresnel, harness, mean_y, plane_scene, render_pair
 F0_15 = 0.04  # ((1.5 - 1) / (1.5 + 1))², the default index's normal reflectance
 
 
 def scene(theta_deg, factor, color):
     """A 2 m square through the origin, tilted by θ about x, seen along −z from z = 1."""
-    p = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
-    blob = struct.pack("<12f", *[c for v in p for c in v]) + struct.pack("<12f", *[0, 0, 1] * 4) + \
-        struct.pack("<6I", 0, 1, 2, 0, 2, 3)
     half = math.radians(theta_deg) / 2
     specular = {"specularFactor": factor, "specularColorFactor": [color] * 3}
     material = {"name": "plane", "extensions": {"KHR_materials_specular": specular},
                 "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0, "roughnessFactor": 0}}
-    return {
-        "asset": {"version": "2.0", "generator": "tools/specular_cycles.py"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
-        "nodes": [{"mesh": 0, "rotation": [math.sin(half), 0, 0, math.cos(half)]},
-                  {"camera": 0, "translation": [0, 0, 1]}],
-        "cameras": [{"type": "orthographic", "orthographic": {"xmag": 0.1, "ymag": 0.1, "znear": 0.01, "zfar": 10}}],
-        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2, "material": 0}]}],
-        "materials": [material],
-        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
-                       "min": [-1, -1, 0], "max": [1, 1, 0]},
-                      {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
-                      {"bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR"}],
-        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
-                        {"buffer": 0, "byteOffset": 96, "byteLength": 24}],
-        "buffers": [{"byteLength": len(blob),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}],
-        "extensionsUsed": ["KHR_materials_specular"]}
-
-
-def fresnel(c, eta):
-    """Unpolarised Fresnel reflectance of a dielectric of relative index eta at cos θ = c."""
-    s2 = (1 - c * c) / eta ** 2
-    ct = (1 - s2) ** 0.5
-    rs, rp = (c - eta * ct) / (c + eta * ct), (eta * c - ct) / (eta * c + ct)
-    return (rs * rs + rp * rp) / 2
+    return plane_scene("tools/specular_cycles.py", material, view=0.1, rotation=[math.sin(half), 0, 0, math.cos(half)])
 
 
 def ior_of_f0(f0):
     root = min(f0, 0.9999) ** 0.5
     return (1 + root) / (1 - root)
-
-
-def mean_y(exrstats, path):
-    img = exrstats.read_exr(path)
-    names = exrstats.rgb_names(list(img["channels"]))
-    luma = (0.2126, 0.7152, 0.0722)
-    chans = [img["channels"][n] for n in names]
-    return sum(w * sum(c) / len(c) for w, c in zip(luma, chans))
 
 
 def main():
@@ -100,11 +63,8 @@ def main():
     for factor, color in ((1.0, 1.0), (0.2, 1.0), (1.0, 0.2)):
         for theta in (0, 60, 80):
             work = os.path.join(a.out, "s%g_c%g_t%d" % (factor, color, theta))
-            os.makedirs(work, exist_ok=True)
-            gltf = os.path.join(work, "plane.gltf")
-            with open(gltf, "w") as f:
-                json.dump(scene(theta, factor, color), f, indent=1)
-            prism_exr, cycles_exr = render_pair("specular_cycles", a, gltf, ["--max-depth", "4"] + common,
+            prism_exr, cycles_exr = render_pair("specular_cycles", a, work, scene(theta, factor, color),
+                                                ["--max-depth", "4"] + common,
                                                 ["--max-bounces", "3", "--filter", "box", "--filter-width", "1"] + common)
             mu = math.cos(math.radians(theta))
             f0 = min(F0_15 * color, 1.0)
