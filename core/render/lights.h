@@ -5,6 +5,7 @@
 // environments also give the radiance and pdf of any direction a ray escapes in.
 
 #include <optional>
+#include <type_traits>
 #include <variant>
 
 #include "base/frame.h"
@@ -218,9 +219,14 @@ class PathSky {
 template <int N>
 std::optional<LightSample<N>> sample_li(const Light& light, const LightSampleContext& ctx, Vec2f u,
                                         const SampledWavelengths<N>& lambda, const PathSky<N>* sky = nullptr) {
-  if (const auto* env = std::get_if<EnvironmentLight>(&light))
-    return env->sample_li(ctx, u, lambda, sky ? sky->radiance() : nullptr);
-  return std::visit([&](const auto& l) { return l.sample_li(ctx, u, lambda); }, light);
+  return std::visit(
+      [&](const auto& l) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(l)>, EnvironmentLight>)
+          return l.sample_li(ctx, u, lambda, sky ? sky->radiance() : nullptr);
+        else
+          return l.sample_li(ctx, u, lambda);
+      },
+      light);
 }
 
 // Radiance arriving along a ray that escaped the scene in direction w, and the solid-angle pdf
