@@ -91,7 +91,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     };
     const auto bs = [&] {
       if constexpr (Dispersion && N > 1)
-        if (companions_alive(path_pdfs) && disperses(material, front))
+        if (disperses(material, front) && companions_alive(path_pdfs))
           return scatter(DispersiveBsdf<N>(material, si->at, lambda, front, path_pdfs));
       return scatter(make_bsdf(material, si->at, lambda, front));
     }();
