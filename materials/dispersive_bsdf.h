@@ -1,7 +1,7 @@
 #pragma once
 // DispersiveBsdf<N>: a material whose index ratio varies with λ, for all of a path's wavelengths
 // at once, by hero-wavelength spectral MIS (Wilkie et al. 2014, "Hero Wavelength Spectral
-// Sampling", §4, the balance heuristic over the wavelengths as heroes). Each lane is the
+// Sampling", EGSR: the balance heuristic over the wavelengths as heroes). Each lane is the
 // material's BSDF at its own wavelength, so at its own index: the hero (lane 0) samples the
 // direction, every lane evaluates f and pdf with its own index.
 //
@@ -10,13 +10,13 @@
 // the same (s, path) space, picked with probability 1/N, whose path pdf p_j is the product of its
 // vertices' pdfs at λ_j. (In s the wavelength pdfs p(λ_j) cancel against dλ_j/ds = 1/(N p(λ_j)):
 // unlike the paper's equal spacing in λ, they do not enter the weights.) One-sample MIS with the
-// balance heuristic (Veach 1997, eq. 9.15) gives every lane k the estimate
+// balance heuristic (Veach 1997, §9.2.4, the one-sample model) gives every lane k the estimate
 //   f_k(x) / ((1/N) Σ_j p_j(x))
 // i.e. the throughput divided, at each vertex, by the lanes' pdfs of its direction averaged with
 // the weights q_j = the path's pdf under lane j so far:  p̄ = Σ_j q_j p_j(ω) / Σ_j q_j; the
-// product of the p̄ telescopes to (1/N) Σ_j p_j. `pdf` in eval and sample_f is that p̄, which is
-// also what MIS against light sampling must use (the power heuristic on p̄ and the light's pdf
-// splits each path between the two strategies after the lanes' weights sum to 1).
+// product of the p̄ telescopes to (1/N) Σ_j p_j. `pdf` in eval and sample_f is that p̄, and MIS
+// against light sampling uses it too (the power heuristic on p̄ and the light's λ-independent pdf):
+// the weights of the 2N techniques, N heroes × {BSDF, light}, then sum to 1 on every path.
 // A delta direction of the hero (smooth refraction) has pdf 0 under every other lane, whose f
 // there is 0 as well: the path goes on with the hero alone, N-fold (the q_j of the others become
 // 0), which is the termination of the secondary wavelengths (pbrt-v4 §4.5.4) as a special case.
