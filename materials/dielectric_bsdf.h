@@ -56,7 +56,8 @@ template <int N, bool Extensions = false>
 class DielectricBsdf {
  public:
   // eta = n_back / n_front (the index behind the shading normal over the one in front), one
-  // value for all lanes: a λ-dependent index terminates the secondary wavelengths first.
+  // value for all lanes: a λ-dependent index is one DielectricBsdf per lane (dispersive_bsdf.h)
+  // or the hero's alone (make_hero_bsdf, for BDPT and VCM).
   DielectricBsdf(const TrowbridgeReitz& distribution, float eta, const SampledSpectrum<N>& tint, bool thin,
                  float transmission = 1.f, float specular = 1.f, bool compensate = true,
                  const OptionalPart<Extensions, SpectralReflectance<N>>& lanes = {})

@@ -17,9 +17,11 @@
 // product of the p̄ telescopes to (1/N) Σ_j p_j. `pdf` in eval and sample_f is that p̄, and MIS
 // against light sampling uses it too (the power heuristic on p̄ and the light's λ-independent pdf):
 // the weights of the 2N techniques, N heroes × {BSDF, light}, then sum to 1 on every path.
-// A delta direction of the hero (smooth refraction) has pdf 0 under every other lane, whose f
-// there is 0 as well: the path goes on with the hero alone, N-fold (the q_j of the others become
-// 0), which is the termination of the secondary wavelengths (pbrt-v4 §4.5.4) as a special case.
+// A delta sample of the hero (a smooth refraction, but also a smooth reflection or a smooth coat's
+// lobe) is given pdf 0 and f 0 under every other lane: the path goes on with the hero alone,
+// N-fold (the q_j of the others become 0), which is the termination of the secondary wavelengths
+// (pbrt-v4 §4.5.4) as a special case. (A delta direction all lanes share, such as a mirror
+// reflection, could keep them with each lane's own probability of choosing that lobe; not done.)
 
 #include <array>
 #include <optional>
@@ -70,7 +72,7 @@ class DispersiveBsdf {
       }
     const float p = mean_pdf(pdf);
     path_pdfs_ *= pdf;
-    path_pdfs_ /= path_pdfs_.max();  // only their ratios count: kept from underflowing
+    if (const float m = path_pdfs_.max(); m > 0) path_pdfs_ /= m;  // only their ratios count: kept from underflowing
     return BsdfSample<N>{f, hero->wi, p, hero->specular, hero->transmission, hero->eta};
   }
 
