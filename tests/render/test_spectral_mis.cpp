@@ -77,6 +77,46 @@ TEST_CASE("spectral MIS at a rough dispersive interface: the hero's mean, less c
   }
 }
 
+TEST_CASE("spectral MIS through two rough dispersive interfaces in a row: the path's pdfs, not each vertex's, weigh the lanes") {
+  // Light from the sky through two rough interfaces (the second sees the first's sample from the
+  // other side, as the far face of a slab would): every lane divided by the product of the p̄,
+  // which must be the lanes' path pdfs averaged, (1/N) Σ_j p_j(ω1) p_j(ω2), against the hero
+  // alone. Averaging each vertex's pdfs on their own instead, Π_v (1/N) Σ_j p_j(ω_v), is biased.
+  constexpr int N = 4;
+  const Material glass = rough_glass(AbbeIor{1.7f, 20.f}, 0.1f);
+  const Vec3f wo = normalize(Vec3f(0.5f, 0.f, 0.866f));
+  Moments mis, hero;
+  Rng rng(11, 0);
+  for (int i = 0; i < 800000; ++i) {
+    const auto lambda = SampledWavelengths<N>::sample({rng.uniform(), rng.uniform()});
+    const float uc1 = rng.uniform(), uc2 = rng.uniform();
+    const Vec2f u1(rng.uniform(), rng.uniform()), u2(rng.uniform(), rng.uniform());
+    std::array<double, 3> a{}, h{};
+    SampledSpectrum<N> path_pdfs(1.f);
+    const DispersiveBsdf<N> first(glass, {}, lambda, nullptr, path_pdfs);
+    if (const auto s1 = first.sample_f(wo, uc1, u1)) {
+      const DispersiveBsdf<N> second(glass, {}, lambda, nullptr, path_pdfs);
+      if (const auto s2 = second.sample_f(-s1->wi, uc2, u2))
+        for (int k = 0; k < N; ++k)
+          a[band(lambda[k])] += s1->f[k] * abs_cos_theta(s1->wi) * s2->f[k] * abs_cos_theta(s2->wi) *
+                                sky(s2->wi, lambda[k]) / (s1->pdf * s2->pdf * lambda.pdf()[k]) / N;
+    }
+    const Bsdf<1> alone = make_bsdf(glass, {}, lambda.lane(0), nullptr);
+    if (const auto s1 = bsdf_sample_f(alone, wo, uc1, u1))
+      if (const auto s2 = bsdf_sample_f(alone, -s1->wi, uc2, u2))
+        h[band(lambda[0])] += s1->f[0] * abs_cos_theta(s1->wi) * s2->f[0] * abs_cos_theta(s2->wi) *
+                              sky(s2->wi, lambda[0]) / (s1->pdf * s2->pdf * lambda.pdf()[0]);
+    mis.add(a), hero.add(h);
+  }
+  for (int c = 0; c < 3; ++c) {
+    const double se = std::hypot(mis.standard_error(c), hero.standard_error(c));
+    INFO("band " << c << ": spectral MIS " << mis.mean(c) << " ± " << mis.standard_error(c) << ", hero alone "
+                 << hero.mean(c) << " ± " << hero.standard_error(c));
+    CHECK(se < 0.01 * hero.mean(c));
+    CHECK(std::abs(mis.mean(c) - hero.mean(c)) < 4.5 * se);
+  }
+}
+
 TEST_CASE("furnace: a rough dispersive glass sphere under a uniform environment renders 1") {
   // Every lane keeps its own estimate through the rough interfaces; with the white sky every
   // direction brings 1, so each lane must stay 1 whatever its index (energy compensation makes the
