@@ -89,7 +89,7 @@ struct RgbUnboundedSpectrum {
 
 struct RgbIlluminantSpectrum {
   explicit RgbIlluminantSpectrum(Rgb rgb);
-  float operator()(float lambda) const;
+  float operator()(float lambda) const { return shape(lambda) * (*illuminant)(lambda); }
   RgbUnboundedSpectrum shape;
   const DenselySampledSpectrum* illuminant;  // D65 with luminance Y = 1
 };
