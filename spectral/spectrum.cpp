@@ -49,6 +49,8 @@ RgbUnboundedSpectrum::RgbUnboundedSpectrum(Rgb rgb) {
 
 RgbIlluminantSpectrum::RgbIlluminantSpectrum(Rgb rgb) : shape(rgb), illuminant(&cie().d65) {}
 
+float RgbIlluminantSpectrum::operator()(float lambda) const { return shape(lambda) * (*illuminant)(lambda); }
+
 RgbAbsorptionSpectrum::RgbAbsorptionSpectrum(Rgb t, float distance)
     : transmittance(t), inv_distance(1 / std::max(distance, 1e-30f)) {}
 

@@ -89,7 +89,7 @@ struct RgbUnboundedSpectrum {
 
 struct RgbIlluminantSpectrum {
   explicit RgbIlluminantSpectrum(Rgb rgb);
-  float operator()(float lambda) const { return shape(lambda) * (*illuminant)(lambda); }
+  float operator()(float lambda) const;
   RgbUnboundedSpectrum shape;
   const DenselySampledSpectrum* illuminant;  // D65 with luminance Y = 1
 };
