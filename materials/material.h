@@ -237,8 +237,9 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
     if (material.metal) {
       n = sample(material.metal->n, lambda), k = sample(material.metal->k, lambda);
     } else {
-      for (int i = 0; i < N; ++i) {
-        const auto nk = metal_nk_from_reflectance(color[i]);
+      for (int i = 0; i < N; ++i) {  // found once for lanes of the same colour (all of a grey metal)
+        const auto nk =
+            i > 0 && color[i] == color[i - 1] ? std::array{n[i - 1], k[i - 1]} : metal_nk_from_reflectance(color[i]);
         n[i] = nk[0], k[i] = nk[1];
       }
     }
