@@ -9,7 +9,8 @@
 // R' = R + T²R/(1 − R²), T' = 1 − R' (pbrt-v4 §9.5.1), and light leaves on the far side in the
 // mirror image of the reflection lobe (straight through when smooth). Only the clear share of a
 // wall (`transmission`) has a far face: an opaque wall is the one interface over its base (glTF
-// materials without KHR_materials_volume are thin-walled, most of them opaque).
+// materials without KHR_materials_volume are thin-walled, most of them opaque); a partly clear
+// one is both, side by side (see reflected()).
 // `transmission` ∈ [0, 1] weights the transmitted lobe (glTF's transmissionFactor; the rest
 // of the light goes to a diffuse base elsewhere); `tint` colours transmitted light; `specular`
 // scales the reflectance, s·F, leaving 1 − s·F to pass (KHR_materials_specular's factor).
@@ -19,7 +20,8 @@
 // Multiple scattering between the microfacets (Turquin 2019, "Practical multiple scattering
 // compensation for microfacet models"): the light a lossless rough interface loses, 1 − E(μ_o)
 // with E its single-scattering R + T albedo (SpecularAlbedo::interface, from the side of wo; for a
-// thin wall the white reflection albedo), is shared out in proportion to the lobes: f_ms = f / E(μ_o).
+// thin wall the white reflection albedo, and for a partly clear one each share's own: see
+// partly_clear_reflection), is shared out in proportion to the lobes: f_ms = f / E(μ_o).
 // pdf and sampling are unchanged; `compensate` false leaves the single-scattering lobes. A
 // specular colour's lanes are compensated with their own indices η_λ; make_bsdf leaves a thin
 // film's lobes uncompensated (E of the filmed interface is not tabulated; dividing by the bare
@@ -71,8 +73,8 @@ class DielectricBsdf {
 
   bool is_specular() const { return smooth_; }
 
-  // Fresnel reflectance at a (micro)facet with cos θ = cos_theta (signed: < 0 from behind), per
-  // lane; the thin wall sums the inter-reflections of its two faces.
+  // Fresnel reflectance s·F of one face at a (micro)facet with cos θ = cos_theta (signed: < 0 from
+  // behind), per lane: what reflected() and transmitted() share out.
   SampledSpectrum<N> fresnel(float cos_theta) const {
     const float c = thin_ ? std::abs(cos_theta) : cos_theta;
     if constexpr (Extensions)
@@ -83,23 +85,26 @@ class DielectricBsdf {
           R = lanes_->film->reflectance(c, eta);
         else
           for (int i = 0; i < N; ++i) R[i] = fresnel_dielectric(c, eta(i));
-        for (int i = 0; i < N; ++i) R[i] = wall(specular_ * R[i]);
+        for (int i = 0; i < N; ++i) R[i] *= specular_;
         return R;
       }
-    return SampledSpectrum<N>(wall(specular_ * fresnel_dielectric(c, eta_)));
+    return SampledSpectrum<N>(specular_ * fresnel_dielectric(c, eta_));
   }
-  // The share that picks reflection over transmission when sampling: the reflectance of every
-  // lane alike (a per-lane one would cost a film per pdf; any choice is unbiased).
+  // The one face's reflectance that picks reflection over transmission when sampling (shares()):
+  // that of every lane alike (a per-lane one would cost a film per pdf; any choice is unbiased).
   float selection(float cos_theta) const {
-    return wall(specular_ * fresnel_dielectric(thin_ ? std::abs(cos_theta) : cos_theta, eta_));
+    return specular_ * fresnel_dielectric(thin_ ? std::abs(cos_theta) : cos_theta, eta_);
   }
 
   // Smooth interface: the reflected share, and the transmitted direction and share.
-  SampledSpectrum<N> reflectance(const Vec3f& wo) const { return fresnel(cos_theta(wo)); }
-  std::optional<Transmission<N>> transmission(const Vec3f& wo) const { return transmission(wo, reflectance(wo)); }
-  std::optional<Transmission<N>> transmission(const Vec3f& wo, const SampledSpectrum<N>& R) const {
-    if (transmission_ <= 0 || R.min() >= 1) return std::nullopt;
-    const SampledSpectrum<N> T = (SampledSpectrum<N>(1.f) - R) * transmission_;
+  SampledSpectrum<N> reflectance(const Vec3f& wo) const { return reflected(fresnel(cos_theta(wo))); }
+  std::optional<Transmission<N>> transmission(const Vec3f& wo) const {
+    return transmission(wo, fresnel(cos_theta(wo)));
+  }
+  // From the face's reflectance F there.
+  std::optional<Transmission<N>> transmission(const Vec3f& wo, const SampledSpectrum<N>& F) const {
+    if (transmission_ <= 0 || F.min() >= 1) return std::nullopt;
+    const SampledSpectrum<N> T = transmitted(F) * transmission_;
     if (thin_) return Transmission<N>{-wo, tint_ * T, 1.f};
     const auto refraction = refract(wo, {0, 0, 1}, eta_);
     if (!refraction) return std::nullopt;
@@ -109,9 +114,9 @@ class DielectricBsdf {
   DeltaLobes<N> delta_lobes(const Vec3f& wo) const {
     DeltaLobes<N> d;
     if (!smooth_ || wo.z == 0) return d;
-    const SampledSpectrum<N> R = reflectance(wo);
-    d.add({Vec3f(-wo.x, -wo.y, wo.z), R, false, 1.f});
-    if (const auto t = transmission(wo, R)) d.add({t->wi, t->weight, true, t->eta});
+    const SampledSpectrum<N> F = fresnel(cos_theta(wo));
+    d.add({Vec3f(-wo.x, -wo.y, wo.z), reflected(F), false, 1.f});
+    if (const auto t = transmission(wo, F)) d.add({t->wi, t->weight, true, t->eta});
     return d;
   }
 
@@ -138,7 +143,7 @@ class DielectricBsdf {
     if (wo.z == 0) return std::nullopt;
     if (smooth_) return sample_smooth(wo, uc);
     const Vec3f wm = distribution_.sample_visible_normal(wo, u);
-    const float R = selection(dot(wo, wm)), T = transmission_ * (1 - R);
+    const auto [R, T] = shares(selection(dot(wo, wm)));
     if (R + T <= 0) return std::nullopt;
     Vec3f wi;
     bool transmitted = false;
@@ -173,6 +178,7 @@ class DielectricBsdf {
   // f at the half vector h with the Fresnel reflectance F there, compensated (see the header).
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, const SampledSpectrum<N>& F) const {
     if (!compensate_) return single_scattering(wo, wi, h, F);
+    if (thin_ && transmission_ < 1 && h.reflection) return partly_clear_reflection(wo, wi, h, F);
     if constexpr (Extensions)
       if (lanes_ && lanes_->eta) {  // each lane's reflectance follows its own index: so does its E
         SampledSpectrum<N> f = single_scattering(wo, wi, h, F);
@@ -182,17 +188,17 @@ class DielectricBsdf {
     return single_scattering(wo, wi, h, F) / single_scattering_albedo(wo.z, eta_);
   }
 
-  // The selection share from the reflectance F at the same facet: without per-lane reflectance,
-  // every lane of F is that share.
+  // The selection share from the face's reflectance F at the same facet: without per-lane
+  // reflectance, every lane of F is that share.
   float selection(float cos_theta, const SampledSpectrum<N>& F) const {
     if constexpr (Extensions)
       if (lanes_) return selection(cos_theta);
     return F[0];
   }
 
-  // pdf at the half vector h, with R the selection share there.
-  float pdf(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, float R) const {
-    const float T = transmission_ * (1 - R);
+  // pdf at the half vector h, with `face` the selection share there.
+  float pdf(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, float face) const {
+    const auto [R, T] = shares(face);
     if (R + T <= 0) return 0.f;
     const float Dv = distribution_.D_visible(wo, h.wm);
     if (h.reflection) return Dv / (4 * abs_dot(wo, h.wm)) * R / (R + T);
@@ -218,8 +224,8 @@ class DielectricBsdf {
   SampledSpectrum<N> single_scattering(const Vec3f& wo, const Vec3f& wi, const HalfVector& h,
                                        const SampledSpectrum<N>& F) const {
     const float D = distribution_.D(h.wm);
-    if (h.reflection) return F * (D * distribution_.G(wo, wi) / std::abs(4 * wi.z * wo.z));
-    const SampledSpectrum<N> T = tint_ * (SampledSpectrum<N>(1.f) - F);
+    if (h.reflection) return reflected(F) * (D * distribution_.G(wo, wi) / std::abs(4 * wi.z * wo.z));
+    const SampledSpectrum<N> T = tint_ * transmitted(F);
     if (thin_) {
       const Vec3f mirrored(wi.x, wi.y, -wi.z);
       return T * (transmission_ * D * distribution_.G(wo, mirrored) / std::abs(4 * wi.z * wo.z));
@@ -227,6 +233,26 @@ class DielectricBsdf {
     const float denom = sqr(dot(wi, h.wm) + dot(wo, h.wm) / h.eta_p) * wi.z * wo.z;
     const float ft = D * distribution_.G(wo, wi) * std::abs(dot(wi, h.wm) * dot(wo, h.wm) / denom);
     return T * (transmission_ * ft / sqr(h.eta_p));
+  }
+
+  // A partly clear wall's reflection, compensated share by share: the opaque share's (1 − t) F as
+  // the one interface's (the albedo the diffuse base's coupling subtracts, SpecularAlbedo::E), the
+  // sheet's t R' as the thin wall's. (The whole divided by the thin wall's white E let a rough white
+  // wall return 1.02 of the light at roughness 1, t = 0.25.)
+  SampledSpectrum<N> partly_clear_reflection(const Vec3f& wo, const Vec3f& wi, const HalfVector& h,
+                                             const SampledSpectrum<N>& F) const {
+    const SpecularAlbedo& table = SpecularAlbedo::table();
+    const float mu = std::abs(wo.z), sheet = transmission_ / table.white(mu, roughness_);
+    const float lobe = distribution_.D(h.wm) * distribution_.G(wo, wi) / std::abs(4 * wi.z * wo.z);
+    SampledSpectrum<N> f;
+    for (int i = 0; i < N; ++i) {
+      float eta = eta_;
+      if constexpr (Extensions)
+        if (lanes_ && lanes_->eta) eta = (*lanes_->eta)[i];
+      const float opaque = (1 - transmission_) / table.interface(mu, roughness_, eta);
+      f[i] = lobe * (opaque * F[i] + sheet * (F[i] + sheet_excess(F[i])));
+    }
+    return f;
   }
 
   // E(μ_o) of the white lossless lobes on wo's side (see the header).
@@ -237,9 +263,10 @@ class DielectricBsdf {
   }
 
   std::optional<BsdfSample<N>> sample_smooth(const Vec3f& wo, float uc) const {
-    const SampledSpectrum<N> Rs = reflectance(wo);
-    const auto t = transmission(wo, Rs);
-    const float R = selection(cos_theta(wo)), T = t ? transmission_ * (1 - R) : 0.f;
+    const SampledSpectrum<N> F = fresnel(cos_theta(wo)), Rs = reflected(F);
+    const auto t = transmission(wo, F);
+    const auto shared = shares(selection(cos_theta(wo)));
+    const float R = shared[0], T = t ? shared[1] : 0.f;
     if (R + T <= 0) return std::nullopt;
     if (uc < R / (R + T)) {
       const Vec3f wi(-wo.x, -wo.y, wo.z);
@@ -248,11 +275,30 @@ class DielectricBsdf {
     return BsdfSample<N>{t->weight / abs_cos_theta(t->wi), t->wi, T / (R + T), true, true, t->eta};
   }
 
-  // A thin wall's reflectance from one face's: where the wall is clear (the transmission share t),
-  // the far face's inter-reflections add to the near face's, R' = R + T²R/(1 − R²); where it is not
-  // (1 − t: the diffuse base under the interface), the near face reflects alone. (Applied to the
-  // whole of an opaque wall, R' made a white plastic reflect 1.037 of the light at normal incidence.)
-  float wall(float R) const { return thin_ && R < 1 ? R + transmission_ * sqr(1 - R) * R / (1 - R * R) : R; }
+  // What the surface reflects and lets through (before the weight `transmission`) from one face's
+  // reflectance R, T = 1 − R. A solid interface: R and T. A thin wall is, side by side, a clear
+  // sheet (its share t = `transmission`) and the one face over the opaque base (1 − t). The sheet
+  // reflects R' = R + T²R/(1 − R²) and transmits T' = 1 − R' (T²/(1 − R²) = T/(1 + R) without
+  // absorption); the opaque share reflects R and passes T into the base (PbrBsdf's diffuse share,
+  // weighted 1 − t). So the wall reflects t R' + (1 − t) R and transmits t T', and with the base's
+  // (1 − t) T all of it adds to exactly 1: t (R' + T') + (1 − t)(R + T). At t = 1 the full sheet, at
+  // t = 0 the single interface (`thin_` is off). (The far side weighted by t (1 − reflected) made a
+  // partly clear wall return t (1 − t)(R' − R) more than it received: up to 0.04 near grazing.)
+  float reflected(float R) const { return thin_ ? R + transmission_ * sheet_excess(R) : R; }
+  float transmitted(float R) const { return thin_ ? 1 - (R + sheet_excess(R)) : 1 - R; }
+  static float sheet_excess(float R) { return R < 1 ? sqr(1 - R) * R / (1 - R * R) : 0.f; }  // R' − R
+  SampledSpectrum<N> reflected(SampledSpectrum<N> F) const {
+    if (thin_)
+      for (int i = 0; i < N; ++i) F[i] = reflected(F[i]);
+    return F;
+  }
+  SampledSpectrum<N> transmitted(const SampledSpectrum<N>& F) const {
+    SampledSpectrum<N> T;
+    for (int i = 0; i < N; ++i) T[i] = transmitted(F[i]);
+    return T;
+  }
+  // The reflected and transmitted shares (with the weight) that choose between the two when sampling.
+  std::array<float, 2> shares(float face) const { return {reflected(face), transmission_ * transmitted(face)}; }
 
   TrowbridgeReitz distribution_;
   bool smooth_, compensate_;

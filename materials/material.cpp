@@ -67,6 +67,14 @@ std::array<float, 2> metal_nk_from_reflectance(float reflectance) {
   return {float(nk[0]), float(nk[1])};
 }
 
+ConstantSpectra::ConstantSpectra(const PbrMaterial& m) {
+  if (!m.base_color_texture) base_color.emplace(m.base_color);
+  if (!m.specular_color_texture && m.specular_color != Rgb{1, 1, 1}) specular_color.emplace(m.specular_color);
+  if (m.sheen && !m.sheen->color_texture) sheen_color.emplace(m.sheen->color);
+  if (m.diffuse_transmission && !m.diffuse_transmission->color_texture)
+    diffuse_transmission_color.emplace(m.diffuse_transmission->color);
+}
+
 SurfaceInputs PbrMaterial::inputs(const SurfacePoint& at) const {
   SurfaceInputs in{base_color, alpha, metallic, roughness, transmission, dielectric.thin_walled};
   const auto texel = [&](const std::optional<Texture>& t, bool srgb) { return t->lookup(at.uv[t->texcoord], srgb); };

@@ -37,14 +37,16 @@ struct Dielectric {
   bool dispersive;  // derived from ior
 };
 
+struct ConstantSpectra;
+
 // Where on a surface a material is evaluated: its texture coordinates and vertex colour.
 struct SurfacePoint {
   std::array<Vec2f, 2> uv{};                      // TEXCOORD_0, TEXCOORD_1
   std::array<float, 4> vertex_color{1, 1, 1, 1};  // COLOR_0 (RGBA), white when absent
   Vec3f coat_normal{0, 0, 1};                     // a clear coat's own normal, in the shading frame
-  // The base colour's spectrum when neither a texture nor vertex colours vary it: upsampled once
-  // per material (World), not at every hit. Null: upsampled from the inputs here.
-  const RgbAlbedoSpectrum* base_color_spectrum = nullptr;
+  // The material's colours upsampled once (World), not at every hit. Null: upsampled from the
+  // inputs here.
+  const ConstantSpectra* spectra = nullptr;
 };
 
 // A PbrMaterial's parameters at one surface point: factor × texture × vertex colour. The
@@ -126,6 +128,15 @@ struct PbrMaterial {
   static PbrMaterial plastic(Rgb color, float roughness, float ior = 1.5f);  // metallic 0, opaque
 };
 
+// A PbrMaterial's colours as spectra, each where no texture varies it (the base colour's is used
+// where no vertex colour varies it either): upsampled once per material, evaluated at each hit.
+struct ConstantSpectra {
+  ConstantSpectra() = default;  // none
+  explicit ConstantSpectra(const PbrMaterial& m);
+  std::optional<RgbAlbedoSpectrum> base_color, sheen_color, diffuse_transmission_color;
+  std::optional<RgbUnboundedSpectrum> specular_color;
+};
+
 using MaterialKind = std::variant<DiffuseMaterial, PbrMaterial>;
 
 enum class AlphaMode { opaque, mask, blend };
@@ -189,19 +200,32 @@ float ior_with_scaled_f0(float eta, float c);
 std::array<float, 2> metal_nk_from_reflectance(float r);
 
 // The BSDF of material m for the path's wavelengths. `front` is the dielectric on the front
-// (normal) side of the surface, or nullptr for vacuum. A λ-dependent index ratio terminates the
-// path's secondary wavelengths (pbrt-v4 §10.5.1); Dispersion = false leaves that check out for
-// scenes without dispersive materials.
-template <int N, bool Dispersion = true>
-Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<N>& lambda, const Dielectric* front) {
+// (normal) side of the surface, or nullptr for vacuum. Where the index ratio varies with λ, every
+// lane refracts at the hero's (lane 0's) index, so only lane 0 is right: the path tracer takes
+// such a material's lanes one by one (DispersiveBsdf), the bidirectional integrators keep the
+// hero alone (make_hero_bsdf).
+template <int N>
+Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavelengths<N>& lambda,
+                  const Dielectric* front) {
   if (const auto* d = std::get_if<DiffuseMaterial>(&m.kind)) return DiffuseBsdf<N>(sample(d->reflectance, lambda));
   const PbrMaterial& material = std::get<PbrMaterial>(m.kind);
   const SurfaceInputs p = material.inputs(at);
   const float alpha = sqr(p.roughness);
   // Local x is the direction of anisotropy (the shading frame follows it): α_x = mix(α, 1, s²).
   const TrowbridgeReitz distribution(p.anisotropy > 0 ? lerp(sqr(p.anisotropy), alpha, 1.f) : alpha, alpha);
+  // A colour at the path's wavelengths, from the material's spectrum if it has one, else upsampled here.
+  const auto sampled = [&]<typename Upsampled>(const std::optional<Upsampled>& constant, Rgb rgb) {
+    const Upsampled spectrum = constant ? *constant : Upsampled(rgb);
+    SampledSpectrum<N> r;
+    for (int i = 0; i < N; ++i) r[i] = spectrum(lambda[i]);
+    return r;
+  };
+  static const ConstantSpectra none;
+  const ConstantSpectra& constant = at.spectra ? *at.spectra : none;
   SampledSpectrum<N> n_front(1.f), color;  // the front medium's index; the base colour
-  const RgbAlbedoSpectrum base = at.base_color_spectrum ? *at.base_color_spectrum : RgbAlbedoSpectrum(p.base_color);
+  const bool vertex_colored = at.vertex_color[0] != 1 || at.vertex_color[1] != 1 || at.vertex_color[2] != 1;
+  const RgbAlbedoSpectrum base =
+      constant.base_color && !vertex_colored ? *constant.base_color : RgbAlbedoSpectrum(p.base_color);
   for (int i = 0; i < N; ++i) {
     if (front) n_front[i] = ior(front->ior, lambda[i]);
     if (p.metallic < 1 || !material.metal) color[i] = base(lambda[i]);
@@ -227,8 +251,6 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
     // The plain metallic-roughness model, compiled without the extensions' parts.
     const ConductorBsdf<N> metal(distribution, n, k, ms && p.metallic > 0);  // weight 0: never evaluated
     if (p.metallic >= 1) return metal;
-    if constexpr (Dispersion)
-      if (disperses(m, front)) lambda.terminate_secondary();
     const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
     const DielectricBsdf<N> dielectric(distribution, eta, color, p.thin_walled, p.transmission, p.specular, ms);
     if (p.metallic <= 0 && p.transmission >= 1) return dielectric;
@@ -242,8 +264,6 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
   if (film)
     film_lanes.emplace(ThinFilm{p.iridescence, p.iridescence_thickness, material.iridescence->ior}, lambda, n_front);
   const ConductorBsdf<N, true> metal(distribution, n, k, ms, p.metallic > 0 ? film_lanes : std::nullopt);
-  if constexpr (Dispersion)
-    if (disperses(m, front)) lambda.terminate_secondary();
   const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
   // Per-lane reflectance: the specular colour's indices, the film; and for the diffuse under
   // them, each lane's index (with a film, the one of the film's highest reflectance).
@@ -254,8 +274,8 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
     lanes->film = film_lanes;
     SampledSpectrum<N> reflecting(eta);
     if (p.specular_color != Rgb{1, 1, 1}) {
-      const RgbUnboundedSpectrum tint(p.specular_color);
-      for (int i = 0; i < N; ++i) reflecting[i] = ior_with_scaled_f0(eta, tint(lambda[i]));
+      const SampledSpectrum<N> tint = sampled(constant.specular_color, p.specular_color);
+      for (int i = 0; i < N; ++i) reflecting[i] = ior_with_scaled_f0(eta, tint[i]);
       lanes->eta = reflecting;
     }
     extras.lane_etas = reflecting;
@@ -273,15 +293,24 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
                                            dielectric_ms, lanes);
   if (p.diffuse_transmission > 0) {
     extras.diffuse_transmission = p.diffuse_transmission;
-    extras.transmitted_albedo = sample(RgbAlbedoSpectrum(p.diffuse_transmission_color), lambda);
+    extras.transmitted_albedo = sampled(constant.diffuse_transmission_color, p.diffuse_transmission_color);
   }
   const PbrBsdf<N, true> pbr(p.metallic, metal, dielectric, p.transmission, color, distribution.alpha(), eta,
                              p.specular, dielectric_ms, extras);
   std::optional<typename LayeredBsdf<N>::Coat> coat;
   if (p.clearcoat > 0) coat = {p.clearcoat, sqr(p.clearcoat_roughness), 1.5f / n_front[0], at.coat_normal, ms};
   std::optional<typename LayeredBsdf<N>::Sheen> sheen;
-  if (p.sheen_color.max() > 0) sheen = {sample(RgbAlbedoSpectrum(p.sheen_color), lambda), sqr(p.sheen_roughness)};
+  if (p.sheen_color.max() > 0) sheen = {sampled(constant.sheen_color, p.sheen_color), sqr(p.sheen_roughness)};
   return LayeredBsdf<N>(pbr, coat, sheen);
+}
+
+// make_bsdf for integrators that follow only the hero wavelength past a λ-dependent index ratio:
+// it terminates lambda's secondary wavelengths there first (pbrt-v4 §10.5.1).
+template <int N>
+Bsdf<N> make_hero_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<N>& lambda,
+                       const Dielectric* front) {
+  if (disperses(m, front)) lambda.terminate_secondary();
+  return make_bsdf(m, at, lambda, front);
 }
 
 }  // namespace prism

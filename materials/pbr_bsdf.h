@@ -94,7 +94,7 @@ class PbrBsdf {
   // Σ (probability of lobe) × (its pdf), without the lobes' values: what eval(wo, wi).pdf sums.
   float pdf(const Vec3f& wo, const Vec3f& wi) const {
     if (flips(wo)) return pdf(-wo, -wi);
-    const auto p = lobe_probabilities(E(wo.z));
+    const auto p = lobe_probabilities(E_o(wo.z));
     float r = 0.f;
     if (metallic_ > 0 && p[0] > 0) r += p[0] * metal_.pdf(wo, wi);
     if (metallic_ < 1 && p[1] > 0) r += p[1] * dielectric_.pdf(wo, wi);
@@ -107,7 +107,7 @@ class PbrBsdf {
   }
   BsdfEval<N> eval(const Vec3f& wo, const Vec3f& wi) const {
     if (flips(wo)) return eval(-wo, -wi);
-    const float e_o = E(wo.z);
+    const float e_o = E_o(wo.z);
     return mixture(wo, wi, lobe_probabilities(e_o), e_o);
   }
 
@@ -117,7 +117,7 @@ class PbrBsdf {
       if (s) s->wi = -s->wi;
       return s;
     }
-    const float e_o = E(wo.z);
+    const float e_o = E_o(wo.z);
     const auto p = lobe_probabilities(e_o);
     std::optional<BsdfSample<N>> s;
     BsdfEval<N> e;
@@ -161,6 +161,13 @@ class PbrBsdf {
   float E(float mu) const {
     return specular_ * SpecularAlbedo::table().E(std::abs(mu), roughness_, eta_, compensated_);
   }
+  // E(μ_o), kept for the next evaluation from the same wo (a path evaluates the BSDF of one hit
+  // from one wo: towards its light samples and its BSDF sample).
+  float E_o(float mu) const {
+    mu = std::abs(mu);
+    if (mu != outgoing_.mu) outgoing_ = {mu, E(mu), false, 0.f, {}};
+    return outgoing_.e;
+  }
   // The coupling factor (1 − E(μ_o))(1 − E(μ_i)) / (1 − E_avg): one value, or one per lane;
   // e_o = E(μ_o), found with the lobe probabilities.
   float scalar_coupling(float e_o, const Vec3f& wi) const {
@@ -173,13 +180,19 @@ class PbrBsdf {
       if (!extras_ || !extras_->lanes) return SampledSpectrum<N>(scalar_coupling(e_o, wi));
       const LaneCoupling& lanes = *extras_->lanes;
       const SpecularAlbedo& table = SpecularAlbedo::table();
-      // μ_o and μ_i found on the tables once, for all the lanes' indices.
-      const SpecularAlbedo::Direction o = SpecularAlbedo::direction(std::abs(wo.z), roughness_),
-                                      in = SpecularAlbedo::direction(std::abs(wi.z), roughness_);
       const bool film = lanes.excess.max() > 0;
-      const float white_o = film ? table.white(o) : 0.f, white_i = film ? table.white(in) : 0.f;
-      std::array<float, N> lane_e_o, lane_e_i;  // each lane's E(μ) at its own index, before specular_
-      table.E(o, lanes.eta, compensated_, lane_e_o);
+      // μ_o and μ_i found on the tables once, for all the lanes' indices; what μ_o gives, once per wo.
+      E_o(wo.z);
+      if (!outgoing_.lanes) {
+        const SpecularAlbedo::Direction o = SpecularAlbedo::direction(outgoing_.mu, roughness_);
+        outgoing_.white = film ? table.white(o) : 0.f;
+        table.E(o, lanes.eta, compensated_, outgoing_.lane_e);
+        outgoing_.lanes = true;
+      }
+      const SpecularAlbedo::Direction in = SpecularAlbedo::direction(std::abs(wi.z), roughness_);
+      const float white_o = outgoing_.white, white_i = film ? table.white(in) : 0.f;
+      const std::array<float, N>& lane_e_o = outgoing_.lane_e;  // each lane's E(μ) at its own index, before specular_
+      std::array<float, N> lane_e_i;
       table.E(in, lanes.eta, compensated_, lane_e_i);
       SampledSpectrum<N> c;
       for (int i = 0; i < N; ++i)
@@ -271,6 +284,14 @@ class PbrBsdf {
   SpecularAlbedo::Roughness roughness_;  // the specular lobe's α, on the albedo tables
   float e_avg_;
   [[no_unique_address]] OptionalPart<Extensions, Parts> extras_;
+  struct Outgoing {  // what depends on wo alone (E_o), for the last |μ_o| asked
+    float mu = -1;   // none yet
+    float e;
+    bool lanes;  // the lanes' coupling: each lane's E(μ_o), and the white lobe's
+    float white;
+    std::array<float, N> lane_e;  // (before specular_)
+  };
+  mutable Outgoing outgoing_;
 };
 
 // The glTF base under its top layers, KHR_materials_sheen and KHR_materials_clearcoat, each
@@ -393,11 +414,21 @@ class LayeredBsdf {
     return mu > 0 ? coat_weight_ * SpecularAlbedo::table().E(mu, coat_roughness_, coat_eta_, coat_compensated_) : 0.f;
   }
   float sheen_E(float mu) const { return sheen_weight_ * SheenAlbedo::table().E(std::abs(mu), sheen_roughness_); }
+  // The coat's and the sheen's albedos towards wo, kept for the next evaluation from the same wo.
+  struct Outgoing {
+    Vec3f wo{0, 0, 0};  // none yet
+    float coat, sheen;
+  };
+  const Outgoing& outgoing(const Vec3f& wo) const {
+    if (wo != outgoing_.wo)
+      outgoing_ = {wo, coat_weight_ > 0 ? coat_E(wo) : 0.f, sheen_weight_ > 0 ? sheen_E(wo.z) : 0.f};
+    return outgoing_;
+  }
   float coat_scale(const Vec3f& wo, const Vec3f& wi) const {
-    return coat_weight_ > 0 ? (1 - coat_E(wo)) * (1 - coat_E(wi)) : 1.f;
+    return coat_weight_ > 0 ? (1 - outgoing(wo).coat) * (1 - coat_E(wi)) : 1.f;
   }
   float sheen_scale(const Vec3f& wo, const Vec3f& wi) const {
-    return sheen_weight_ > 0 ? 1 - std::max(sheen_E(wo.z), sheen_E(wi.z)) : 1.f;
+    return sheen_weight_ > 0 ? 1 - std::max(outgoing(wo).sheen, sheen_E(wi.z)) : 1.f;
   }
   float base_scale(const Vec3f& wo, const Vec3f& wi) const { return coat_scale(wo, wi) * sheen_scale(wo, wi); }
 
@@ -417,7 +448,7 @@ class LayeredBsdf {
 
   // The coat's, the sheen's and the base's shares of the light scattered towards wo.
   std::array<float, 3> layer_probabilities(const Vec3f& wo) const {
-    const float c = coat_weight_ > 0 ? coat_E(wo) : 0.f, t = 1 - c, s = sheen_E(wo.z);
+    const float c = outgoing(wo).coat, t = 1 - c, s = outgoing_.sheen;
     std::array<float, 3> w = {c, t * s, t * (1 - s)};
     const float sum = w[0] + w[1] + w[2];
     if (!(sum > 0)) return {0, 0, 1};
@@ -436,6 +467,7 @@ class LayeredBsdf {
   SheenBsdf<N> sheen_;
   float sheen_weight_;
   SheenAlbedo::Roughness sheen_roughness_;  // where the sheen's α falls on its albedo table
+  mutable Outgoing outgoing_;
 };
 
 }  // namespace prism

@@ -17,6 +17,7 @@
 // the base's actual index (or measured n, k), so nothing is fitted and no colour is lost.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <optional>
@@ -69,8 +70,8 @@ struct FilmInterfaces {
   // Unpolarised reflectance for the phase constant k = 4π d / λ (k = 0: the bare interface).
   float reflectance(float k) const {
     if (k == 0) return (airy(r_af_s, r_fb_s) + airy(r_af_p, r_fb_p)) / 2;
-    const float a = k * q_f.real();
-    C phase(std::cos(a), std::sin(a));
+    const SinCos a = sin_cos(k * q_f.real());
+    C phase(a.cos, a.sin);
     if (q_f.imag() != 0) phase *= std::exp(-k * q_f.imag());  // evanescent in the film
     return (airy(r_af_s, mul(r_fb_s, phase)) + airy(r_af_p, mul(r_fb_p, phase))) / 2;
   }
@@ -204,23 +205,31 @@ struct FilmLanes {
   // and the phase of modulus 1, so per polarisation, with φ = k q_f,
   //   R = |r_af + r_fb e^{iφ}|² / |1 + r_af r_fb e^{iφ}|²
   //     = ((r_af + r_fb cos φ)² + (r_fb sin φ)²) / ((1 + r_af r_fb cos φ)² + (r_af r_fb sin φ)²).
-  // Nothing when some lane falls outside that case (the complex sum above takes it).
+  // Nothing when some lane falls outside that case (the complex sum above takes it). The lanes'
+  // loop has no branch and no library call, so it runs on all lanes at once (SIMD).
   template <typename Eta>
   std::optional<SampledSpectrum<N>> real_reflectance(float cos_theta, const Eta& eta) const {
     if (cos_theta < 0) return std::nullopt;
     const float c = std::min(cos_theta, 1.f), s2 = 1 - c * c;
+    std::array<float, N> n2b;
+    bool propagates = true;
+    for (int i = 0; i < N; ++i) {
+      n2b[i] = eta(i) * eta(i);
+      propagates &= (ior[i] * ior[i] > s2) & (n2b[i] > s2);
+    }
+    if (!propagates) return std::nullopt;
     SampledSpectrum<N> R;
     for (int i = 0; i < N; ++i) {
-      const float n2f = ior[i] * ior[i], n2b = eta(i) * eta(i);
-      if (!(n2f > s2 && n2b > s2)) return std::nullopt;
-      const float q_f = std::sqrt(n2f - s2), q_b = std::sqrt(n2b - s2);
+      const float n2f = ior[i] * ior[i];
+      const float q_f = std::sqrt(n2f - s2), q_b = std::sqrt(n2b[i] - s2);
       const float af_s = (c - q_f) / (c + q_f), af_p = (n2f * c - q_f) / (n2f * c + q_f);
-      const float fb_s = (q_f - q_b) / (q_f + q_b), fb_p = (n2b * q_f - n2f * q_b) / (n2b * q_f + n2f * q_b);
+      const float fb_s = (q_f - q_b) / (q_f + q_b), fb_p = (n2b[i] * q_f - n2f * q_b) / (n2b[i] * q_f + n2f * q_b);
       const float bare = (sqr((af_s + fb_s) / (1 + af_s * fb_s)) + sqr((af_p + fb_p) / (1 + af_p * fb_p))) / 2;
-      const float phi = k[i] * q_f, cos_phi = std::cos(phi), sin_phi = std::sin(phi);
+      const SinCos phi = sin_cos(k[i] * q_f);
+      // A vanishing denominator (grazing) gives 1: min(1, x/0) is 1 for x/0 = inf or NaN.
       const auto airy = [&](float r1, float r2) {
-        const float den = sqr(1 + r1 * r2 * cos_phi) + sqr(r1 * r2 * sin_phi);
-        return den == 0 ? 1.f : std::min(1.f, (sqr(r1 + r2 * cos_phi) + sqr(r2 * sin_phi)) / den);
+        const float den = sqr(1 + r1 * r2 * phi.cos) + sqr(r1 * r2 * phi.sin);
+        return std::min(1.f, (sqr(r1 + r2 * phi.cos) + sqr(r2 * phi.sin)) / den);
       };
       R[i] = bare + weight * ((airy(af_s, fb_s) + airy(af_p, fb_p)) / 2 - bare);
     }

@@ -1,5 +1,6 @@
 #pragma once
-// Scalar helpers used everywhere: constants, clamping, safe inverse trig, float error bounds.
+// Scalar helpers used everywhere: constants, clamping, safe inverse trig, a vectorisable sin/cos,
+// float error bounds.
 
 #include <algorithm>
 #include <bit>
@@ -56,6 +57,24 @@ inline float next_float_down(float v) {
   uint32_t bits = std::bit_cast<uint32_t>(v);
   bits = v > 0 ? bits - 1 : bits + 1;
   return std::bit_cast<float>(bits);
+}
+
+// sin x and cos x in plain arithmetic (no library call, so loops over a path's lanes vectorise),
+// for |x| up to ~10⁴: x less the nearest multiple q of π/2 (Cody & Waite's reduction, π/2 split
+// into two floats), r ∈ [−π/4, π/4], then the Taylor polynomials of sin r to r⁷ and cos r to r⁸
+// (truncation below 3.1·10⁻⁷), turned to x's quadrant q mod 4.
+struct SinCos {
+  float sin, cos;
+};
+inline SinCos sin_cos(float x) {
+  const float t = x * 0.636619772f + 0.5f;  // 2/π; q = ⌊t⌋ by truncation, which vectorises
+  int n = int(t);
+  n -= float(n) > t;
+  const float q = float(n), r = (x - q * 1.57079637f) + q * 4.37113901e-8f, r2 = r * r;
+  const float s = r + r * r2 * (-1.f / 6 + r2 * (1.f / 120 + r2 * (-1.f / 5040)));
+  const float c = 1 + r2 * (-0.5f + r2 * (1.f / 24 + r2 * (-1.f / 720 + r2 * (1.f / 40320))));
+  const float sin = n & 1 ? c : s, cos = n & 1 ? s : c;
+  return {n & 2 ? -sin : sin, (n + 1) & 2 ? -cos : cos};
 }
 
 // Balance heuristic with β = 2 (Veach 1997, §9.2.3): weight of a sample from f among f and g.

@@ -24,11 +24,10 @@ World::World(const Scene& scene, const AccelOptions& accel)
   RgbToSpectrumTable::srgb();
   cie();
   metal_nk_from_reflectance(0.5f);  // builds the edge-tint table of the base-colour metals (~40 M instructions)
-  // Untextured base colours, upsampled once (used where the mesh has no vertex colours).
-  base_color_spectra_.resize(scene.materials.size());
+  // Untextured colours, upsampled once.
+  spectra_.resize(scene.materials.size());
   for (size_t i = 0; i < scene.materials.size(); ++i)
-    if (const auto* pbr = std::get_if<PbrMaterial>(&scene.materials[i].kind); pbr && !pbr->base_color_texture)
-      base_color_spectra_[i].emplace(pbr->base_color);
+    if (const auto* pbr = std::get_if<PbrMaterial>(&scene.materials[i].kind)) spectra_[i].emplace(*pbr);
 }
 
 // Transformed exactly as the accel transforms the triangles it flattens into world space, so the
@@ -169,10 +168,8 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
   si.prim = hit.prim;
   for (int set = 0; set < 2; ++set)
     if (!m.uv[set].empty()) si.at.uv[set] = interpolate(m.uv[set], m, hit.prim, b);
-  if (!m.colors.empty())
-    si.at.vertex_color = interpolate(m.colors, m, hit.prim, b);
-  else if (const auto& spectrum = base_color_spectra_[m.material])
-    si.at.base_color_spectrum = &*spectrum;
+  if (!m.colors.empty()) si.at.vertex_color = interpolate(m.colors, m, hit.prim, b);
+  if (const auto& spectra = spectra_[m.material]) si.at.spectra = &*spectra;
 
   if (!m.normals.empty()) {
     const Vec3f ns = transform_normal(instance.to_world, interpolate(m.normals, m, hit.prim, b));

@@ -61,8 +61,8 @@ class World {
   std::vector<int> instance_light_base_;
   int environment_light_ = -1;
   std::unique_ptr<const EnvironmentMap> environment_map_;
-  std::unique_ptr<const Spectrum> environment_radiance_;              // the constant environment, tabulated per nm
-  std::vector<std::optional<RgbAlbedoSpectrum>> base_color_spectra_;  // per material (SurfacePoint)
+  std::unique_ptr<const Spectrum> environment_radiance_;  // the constant environment, tabulated per nm
+  std::vector<std::optional<ConstantSpectra>> spectra_;   // per material (SurfacePoint)
   PowerLightSampler light_sampler_;
   std::vector<uint32_t> delta_lights_, area_lights_;
   PowerLightSampler area_light_sampler_;
