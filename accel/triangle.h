@@ -67,44 +67,58 @@ struct BlockHits {
   TriangleHit lane(int i) const { return {t[i], u[i] * inv_det[i], v[i] * inv_det[i], w[i] * inv_det[i]}; }
 };
 
+// A block's vertices relative to the ray's origin, in its permuted axes, and sheared so that the
+// ray runs along +z (the z coordinates are not yet scaled by sz).
+struct ShearedBlock {
+  simd::f8 ax, ay, a_z, bx, by, b_z, cx, cy, c_z;
+
+  ShearedBlock(const WatertightRay& r, const TriangleBlock& tri) {
+    const simd::f8 ox = simd::broadcast(r.ox), oy = simd::broadcast(r.oy), oz = simd::broadcast(r.oz);
+    a_z = tri.v[0][r.kz] - oz, b_z = tri.v[1][r.kz] - oz, c_z = tri.v[2][r.kz] - oz;
+    ax = (tri.v[0][r.kx] - ox) - r.sx * a_z, ay = (tri.v[0][r.ky] - oy) - r.sy * a_z;
+    bx = (tri.v[1][r.kx] - ox) - r.sx * b_z, by = (tri.v[1][r.ky] - oy) - r.sy * b_z;
+    cx = (tri.v[2][r.kx] - ox) - r.sx * c_z, cy = (tri.v[2][r.ky] - oy) - r.sy * c_z;
+  }
+};
+
+// Scaled barycentrics: the 2D edge functions of the edges opposite v0, v1, v2.
+struct EdgeFunctions {
+  simd::f8 u, v, w;
+};
+
 // The edge functions of the lanes in `lanes` recomputed in double, where the products are exact:
-// for rays exactly on an edge in float (rare). Out of line, so that the common path stays small.
-[[gnu::cold, gnu::noinline]] inline void exact_edge_functions(uint32_t lanes, const simd::f8& ax, const simd::f8& ay,
-                                                              const simd::f8& bx, const simd::f8& by,
-                                                              const simd::f8& cx, const simd::f8& cy, simd::f8& u,
-                                                              simd::f8& v, simd::f8& w) {
+// for rays exactly on an edge in float (rare). Out of line, and given the block rather than its
+// sheared vertices (it shears them again, identically), so that the common path keeps those in
+// registers.
+[[gnu::cold, gnu::noinline]] inline EdgeFunctions exact_edge_functions(uint32_t lanes, const WatertightRay& r,
+                                                                       const TriangleBlock& tri, EdgeFunctions e) {
+  const ShearedBlock s(r, tri);
   const auto edge_function = [](double px, double py, double qx, double qy) { return float(px * qy - py * qx); };
   for (; lanes; lanes &= lanes - 1) {
     const int i = std::countr_zero(lanes);
-    u[i] = edge_function(cx[i], cy[i], bx[i], by[i]);
-    v[i] = edge_function(ax[i], ay[i], cx[i], cy[i]);
-    w[i] = edge_function(bx[i], by[i], ax[i], ay[i]);
+    e.u[i] = edge_function(s.cx[i], s.cy[i], s.bx[i], s.by[i]);
+    e.v[i] = edge_function(s.ax[i], s.ay[i], s.cx[i], s.cy[i]);
+    e.w[i] = edge_function(s.bx[i], s.by[i], s.ax[i], s.ay[i]);
   }
+  return e;
 }
 
-inline BlockHits intersect_triangles(const WatertightRay& r, const TriangleBlock& tri, float tmax) {
+[[gnu::always_inline]] inline BlockHits intersect_triangles(const WatertightRay& r, const TriangleBlock& tri,
+                                                            float tmax) {
   using simd::f8, simd::i8;
-  // Vertices relative to the origin, in the permuted axes.
-  const f8 ox = simd::broadcast(r.ox), oy = simd::broadcast(r.oy), oz = simd::broadcast(r.oz);
-  const f8 a_x = tri.v[0][r.kx] - ox, a_y = tri.v[0][r.ky] - oy, a_z = tri.v[0][r.kz] - oz;
-  const f8 b_x = tri.v[1][r.kx] - ox, b_y = tri.v[1][r.ky] - oy, b_z = tri.v[1][r.kz] - oz;
-  const f8 c_x = tri.v[2][r.kx] - ox, c_y = tri.v[2][r.ky] - oy, c_z = tri.v[2][r.kz] - oz;
-  // Sheared into the ray's frame.
-  const f8 ax = a_x - r.sx * a_z, ay = a_y - r.sy * a_z;
-  const f8 bx = b_x - r.sx * b_z, by = b_y - r.sy * b_z;
-  const f8 cx = c_x - r.sx * c_z, cy = c_y - r.sy * c_z;
-
-  // Scaled barycentrics: 2D edge functions of the edges opposite v0, v1, v2.
-  f8 u = cx * by - cy * bx;
-  f8 v = ax * cy - ay * cx;
-  f8 w = bx * ay - by * ax;
-  const i8 on_edge = (u == 0.f) | (v == 0.f) | (w == 0.f);
-  if (const uint32_t edge = simd::bits(on_edge)) exact_edge_functions(edge, ax, ay, bx, by, cx, cy, u, v, w);
-  const i8 outside = ((u < 0.f) | (v < 0.f) | (w < 0.f)) & ((u > 0.f) | (v > 0.f) | (w > 0.f));
+  const ShearedBlock sheared(r, tri);
+  const f8 &ax = sheared.ax, &ay = sheared.ay, &bx = sheared.bx, &by = sheared.by, &cx = sheared.cx, &cy = sheared.cy;
+  EdgeFunctions e{cx * by - cy * bx, ax * cy - ay * cx, bx * ay - by * ax};
+  const i8 on_edge = (e.u == 0.f) | (e.v == 0.f) | (e.w == 0.f);
+  if (const uint32_t edge = simd::bits(on_edge)) e = exact_edge_functions(edge, r, tri, e);
+  const f8 &u = e.u, &v = e.v, &w = e.w;
+  // Outside: edge functions of both signs (a lane with NaN vertices fails the t test below).
+  const i8 outside = (simd::min_ignore_nan(u, simd::min_ignore_nan(v, w)) < 0.f) &
+                     (simd::max_ignore_nan(u, simd::max_ignore_nan(v, w)) > 0.f);
   const f8 det = u + v + w;
 
   // Scaled distance T = det · t.
-  const f8 az = r.sz * a_z, bz = r.sz * b_z, cz = r.sz * c_z;
+  const f8 az = r.sz * sheared.a_z, bz = r.sz * sheared.b_z, cz = r.sz * sheared.c_z;
   const f8 t_scaled = u * az + v * bz + w * cz;
   BlockHits hits;
   hits.inv_det = 1.f / det;
