@@ -56,9 +56,9 @@ struct Process {
   }
   // Waits until the log shows `text` (the render has reached that point).
   bool wait_for_log(const std::string& text) const {
-    for (int i = 0; i < 600; ++i) {
+    for (int i = 0; i < 3000; ++i) {
       if (slurp(err).find(text) != std::string::npos) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     return false;
   }
@@ -76,10 +76,11 @@ struct Process {
   }
 };
 
-// A render that would take hours, in passes of a fraction of a second.
+// A render that would take hours, in passes of about a second (16 spp at 320 × 240, 2 threads):
+// long enough that a second signal sent as soon as the first is logged arrives within the pass.
 std::vector<std::string> long_render(const std::filesystem::path& exr, const std::filesystem::path& png) {
   return {"render",     PRISM_SOURCE_DIR "/data/scenes/cornell.gltf",
-          "--width",    "96",
+          "--width",    "320",
           "--spp",      "1000000",
           "-v",         "-o",
           exr.string(), "--preview",
