@@ -200,11 +200,13 @@ float ior_with_scaled_f0(float eta, float c);
 std::array<float, 2> metal_nk_from_reflectance(float r);
 
 // The BSDF of material m for the path's wavelengths. `front` is the dielectric on the front
-// (normal) side of the surface, or nullptr for vacuum. A λ-dependent index ratio terminates the
-// path's secondary wavelengths (pbrt-v4 §10.5.1); Dispersion = false leaves that check out for
-// scenes without dispersive materials.
-template <int N, bool Dispersion = true>
-Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<N>& lambda, const Dielectric* front) {
+// (normal) side of the surface, or nullptr for vacuum. Where the index ratio varies with λ, every
+// lane refracts at the hero's (lane 0's) index, so only lane 0 is right: the path tracer takes
+// such a material's lanes one by one (DispersiveBsdf), the bidirectional integrators keep the
+// hero alone (make_hero_bsdf).
+template <int N>
+Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavelengths<N>& lambda,
+                  const Dielectric* front) {
   if (const auto* d = std::get_if<DiffuseMaterial>(&m.kind)) return DiffuseBsdf<N>(sample(d->reflectance, lambda));
   const PbrMaterial& material = std::get<PbrMaterial>(m.kind);
   const SurfaceInputs p = material.inputs(at);
@@ -249,8 +251,6 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
     // The plain metallic-roughness model, compiled without the extensions' parts.
     const ConductorBsdf<N> metal(distribution, n, k, ms && p.metallic > 0);  // weight 0: never evaluated
     if (p.metallic >= 1) return metal;
-    if constexpr (Dispersion)
-      if (disperses(m, front)) lambda.terminate_secondary();
     const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
     const DielectricBsdf<N> dielectric(distribution, eta, color, p.thin_walled, p.transmission, p.specular, ms);
     if (p.metallic <= 0 && p.transmission >= 1) return dielectric;
@@ -264,8 +264,6 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
   if (film)
     film_lanes.emplace(ThinFilm{p.iridescence, p.iridescence_thickness, material.iridescence->ior}, lambda, n_front);
   const ConductorBsdf<N, true> metal(distribution, n, k, ms, p.metallic > 0 ? film_lanes : std::nullopt);
-  if constexpr (Dispersion)
-    if (disperses(m, front)) lambda.terminate_secondary();
   const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
   // Per-lane reflectance: the specular colour's indices, the film; and for the diffuse under
   // them, each lane's index (with a film, the one of the film's highest reflectance).
@@ -304,6 +302,15 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<
   std::optional<typename LayeredBsdf<N>::Sheen> sheen;
   if (p.sheen_color.max() > 0) sheen = {sampled(constant.sheen_color, p.sheen_color), sqr(p.sheen_roughness)};
   return LayeredBsdf<N>(pbr, coat, sheen);
+}
+
+// make_bsdf for integrators that follow only the hero wavelength past a λ-dependent index ratio:
+// it terminates lambda's secondary wavelengths there first (pbrt-v4 §10.5.1).
+template <int N>
+Bsdf<N> make_hero_bsdf(const Material& m, const SurfacePoint& at, SampledWavelengths<N>& lambda,
+                       const Dielectric* front) {
+  if (disperses(m, front)) lambda.terminate_secondary();
+  return make_bsdf(m, at, lambda, front);
 }
 
 }  // namespace prism

@@ -97,7 +97,8 @@ class SampledWavelengths {
   // At an interface whose index of refraction varies with λ, only the hero wavelength (lane 0)
   // can follow the refracted direction. The companions are dropped (pdf 0) and the hero's pdf
   // divided by N, so that the lane average used by the film stays an unbiased estimator
-  // (pbrt-v4 §4.5.4, TerminateSecondary).
+  // (pbrt-v4 §4.5.4, TerminateSecondary). BDPT and VCM do this; the path tracer keeps every lane
+  // by spectral MIS where the interface is rough (materials/dispersive_bsdf.h).
   void terminate_secondary() {
     if (secondary_terminated()) return;
     for (int i = 1; i < N; ++i) pdf_[i] = 0.f;

@@ -78,7 +78,7 @@ void trace_light_path(const BdptScene& scene, SampledWavelengths<N>& lambda, Sam
     const Frame frame = si->shading_frame();
     LightVertex<N> v{*si,
                      frame,
-                     make_bsdf<N>(material, si->at, lambda, front),
+                     make_hero_bsdf<N>(material, si->at, lambda, front),
                      frame.to_local(si->wo),
                      beta,
                      m,
@@ -272,7 +272,7 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, const SampledW
 
     const bool entering = si->front_face();
     const Dielectric* front = scene.media ? media.front_dielectric(material, entering) : nullptr;
-    const Bsdf<N> bsdf = make_bsdf<N>(material, si->at, camera_lambda, front);
+    const Bsdf<N> bsdf = make_hero_bsdf<N>(material, si->at, camera_lambda, front);
     const Frame frame = si->shading_frame();
     const Vec3f wo = frame.to_local(si->wo);
     if (!bsdf_is_specular(bsdf)) {

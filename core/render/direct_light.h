@@ -15,7 +15,7 @@ template <int N>
 struct LightContribution {
   SampledSpectrum<N> f_L;  // f(wo, wi) · L_i · |cos θ_i|, not yet divided by the pdf
   float light_pdf;         // solid-angle pdf of the light sample (1 for a point light)
-  float bsdf_pdf;          // the BSDF's pdf of sampling the same direction
+  float bsdf_pdf;          // the BSDF's pdf of sampling the same direction (DispersiveBsdf: p̄)
 };
 
 // A direction must be on the side of the geometric surface that the lobe scattering into it
@@ -26,9 +26,10 @@ inline bool wrong_side(const SurfaceInteraction& si, const Vec3f& wi, bool trans
   return crosses != transmission;
 }
 
-template <int N>
+// `bsdf` is a Bsdf<N> or a DispersiveBsdf<N> (anything bsdf_eval takes).
+template <int N, class B>
 std::optional<LightContribution<N>> light_contribution(const World& world, const SurfaceInteraction& si,
-                                                       const Frame& frame, const Bsdf<N>& bsdf, const Vec3f& wo,
+                                                       const Frame& frame, const B& bsdf, const Vec3f& wo,
                                                        const Light& light, Vec2f u, const SampledWavelengths<N>& lambda,
                                                        RayCounters& counters,
                                                        const Vec3f& reflect_axis = {0.f, 0.f, 0.f},

@@ -1,5 +1,6 @@
 #include "render/path_integrator.h"
 
+#include "materials/dispersive_bsdf.h"
 #include "render/direct_light.h"
 #include "render/medium_stack.h"
 #include "render/russian_roulette.h"
@@ -9,11 +10,10 @@ namespace prism {
 namespace {
 
 // Next-event estimation: one light chosen by power, weighted against BSDF sampling by MIS.
-template <int N>
-SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& si, const Frame& frame,
-                                 const Bsdf<N>& bsdf, const Vec3f& wo, const Vec3f& reflect_axis,
-                                 const SampledWavelengths<N>& lambda, const PathSky<N>& sky, Sampler& sampler,
-                                 RayCounters& counters) {
+template <int N, class B>
+SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& si, const Frame& frame, const B& bsdf,
+                                 const Vec3f& wo, const Vec3f& reflect_axis, const SampledWavelengths<N>& lambda,
+                                 const PathSky<N>& sky, Sampler& sampler, RayCounters& counters) {
   const float u_light = sampler.get_1d();
   const Vec2f u = sampler.get_2d();
   const PowerLightSampler& ls = world.light_sampler();
@@ -31,13 +31,11 @@ SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& s
 }  // namespace
 
 template <int N, bool Media, bool Dispersion>
-SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavelengths<N>& lambda_in, Sampler& sampler,
+SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavelengths<N>& lambda, Sampler& sampler,
                                  const PathOptions& options, RayCounters& counters) {
-  // What the vertices before a dispersive interface add counts for every lane (L); after one,
-  // only the hero wavelength follows the path (`hero`, wavelengths.h hero_lane).
-  SampledWavelengths<N> lambda = lambda_in;
-  SampledSpectrum<N> L(0.f), hero(0.f), beta(1.f);
-  bool hero_only = false;
+  // At a dispersive interface the lanes' pdfs of a direction differ: path_pdfs are the path's pdfs
+  // under each lane as the hero, relative to each other, for spectral MIS (dispersive_bsdf.h).
+  SampledSpectrum<N> L(0.f), beta(1.f), path_pdfs(1.f);
   bool specular_bounce = false;
   float bsdf_pdf_prev = 0.f;  // solid-angle pdf of the BSDF sample that made `ray`
   Vec3f reflect_axis_prev;    // where that vertex sampled the environment (see LightSampleContext)
@@ -56,12 +54,11 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     // otherwise the MIS weight of BSDF sampling against light sampling (whose solid-angle pdf,
     // a callable, is evaluated only then).
     const auto add_emitted = [&](const SampledSpectrum<N>& Le, int light, const auto& light_pdf_solid_angle) {
-      SampledSpectrum<N>& sum = hero_only ? hero : L;
       if (depth == 0 || specular_bounce || !options.next_event) {
-        sum += beta * Le;
+        L += beta * Le;
       } else {
         const float light_pdf = light_sampler.pmf(uint32_t(light)) * light_pdf_solid_angle();
-        sum += beta * Le * power_heuristic(bsdf_pdf_prev, light_pdf);
+        L += beta * Le * power_heuristic(bsdf_pdf_prev, light_pdf);
       }
     };
 
@@ -82,17 +79,22 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
 
     const bool entering = si->front_face();
     const Dielectric* front = Media ? media.front_dielectric(material, entering) : nullptr;
-    const Bsdf<N> bsdf = make_bsdf<N, Dispersion>(material, si->at, lambda, front);
-    if constexpr (Dispersion) hero_only = N > 1 && lambda.secondary_terminated();
     const Frame frame = si->shading_frame();
     const Vec3f wo = frame.to_local(si->wo);
     const Vec3f reflect_axis = material.transmits() ? Vec3f(0.f, 0.f, 0.f) : wo.z < 0 ? -frame.z : frame.z;
-    if (options.next_event && !bsdf_is_specular(bsdf))
-      (hero_only ? hero : L) +=
-          beta * sample_direct(world, *si, frame, bsdf, wo, reflect_axis, lambda, sky, sampler, counters);
-
-    const float uc = sampler.get_1d();
-    const auto bs = bsdf_sample_f(bsdf, wo, uc, sampler.get_2d());
+    // Light sampling, then the BSDF sample that continues the path, for either kind of BSDF.
+    const auto scatter = [&](const auto& bsdf) {
+      if (options.next_event && !bsdf_is_specular(bsdf))
+        L += beta * sample_direct(world, *si, frame, bsdf, wo, reflect_axis, lambda, sky, sampler, counters);
+      const float uc = sampler.get_1d();
+      return bsdf_sample_f(bsdf, wo, uc, sampler.get_2d());
+    };
+    const auto bs = [&] {
+      if constexpr (Dispersion && N > 1)
+        if (disperses(material, front) && companions_alive(path_pdfs))
+          return scatter(DispersiveBsdf<N>(material, si->at, lambda, front, path_pdfs));
+      return scatter(make_bsdf(material, si->at, lambda, front));
+    }();
     if (!bs || bs->pdf == 0.f) break;
     const Vec3f wi = frame.to_world(bs->wi);
     if (wrong_side(*si, wi, bs->transmission)) break;
@@ -114,7 +116,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     }
     if (beta.is_zero()) break;
   }
-  return L + hero_lane(hero);
+  return L;
 }
 
 #define PRISM_INSTANTIATE(N, MEDIA, DISPERSION)                                                                    \

@@ -17,15 +17,16 @@ struct PathOptions {
 
 // Machinery a scene may not need, compiled in or out per render (the renderer picks from the
 // scene's features): Media, the stack of closed dielectrics a path is inside with Beer–Lambert
-// absorption; Dispersion, the check for λ-dependent index ratios that keeps only the hero
-// wavelength. A scene without them runs code that does not contain them.
+// absorption; Dispersion, the check for λ-dependent index ratios, where the lanes are weighed by
+// spectral MIS (materials/dispersive_bsdf.h). A scene without them runs code that does not contain them.
 struct PathFeatures {
   bool media = true, dispersion = true;
 };
 
-// Radiance arriving along `ray` at the path's wavelengths: what a path that met a dispersive
-// interface found after it is carried by the hero wavelength alone (lane 0, N times over), what
-// it found before by every lane.
+// Radiance arriving along `ray` at the path's wavelengths. Past a dispersive interface every lane
+// keeps its own estimate f_k / ((1/N) Σ_j p_j), p_j the path's pdf with lane j as the hero
+// (hero-wavelength spectral MIS, dispersive_bsdf.h); past a delta refraction there, only the hero's
+// (lane 0, N times over).
 template <int N, bool Media, bool Dispersion>
 SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavelengths<N>& lambda, Sampler& sampler,
                                  const PathOptions& options, RayCounters& counters);

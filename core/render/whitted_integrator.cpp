@@ -50,8 +50,8 @@ SampledSpectrum<N> scatter(const Context& c, const SurfaceInteraction& si, const
                            const MediumStack& media, int depth, float weight) {
   const Material& material = *si.material;
   const bool entering = si.front_face();
-  SampledWavelengths<N> bsdf_lambda = lambda;  // a dispersive interface only reaches here one wavelength at a time
-  const Bsdf<N> bsdf = make_bsdf(material, si.at, bsdf_lambda, media.front_dielectric(material, entering));
+  // (a dispersive interface only reaches here one wavelength at a time)
+  const Bsdf<N> bsdf = make_bsdf(material, si.at, lambda, media.front_dielectric(material, entering));
   const Frame frame = si.shading_frame();
   const Vec3f wo = frame.to_local(si.wo);
   SampledSpectrum<N> L(0.f);

@@ -99,13 +99,13 @@ TEST_CASE("a dispersive interface keeps only the hero wavelength, a plain one ke
   Material flint = glass(MaterialCatalogue::standard().dielectric("N-SF11"));
   Material plain = glass(ConstantIor{1.5f});
   auto lambda = SampledWavelengths<4>::sample({0.2f, 0.3f});
-  make_bsdf(plain, {}, lambda, nullptr);
+  make_hero_bsdf(plain, {}, lambda, nullptr);
   CHECK_FALSE(lambda.secondary_terminated());
-  make_bsdf(flint, {}, lambda, nullptr);
+  make_hero_bsdf(flint, {}, lambda, nullptr);
   CHECK(lambda.secondary_terminated());
   // A plain glass inside a dispersive medium also sees a λ-dependent index ratio.
   auto lambda2 = SampledWavelengths<4>::sample({0.2f, 0.3f});
-  make_bsdf(plain, {}, lambda2, flint.dielectric());
+  make_hero_bsdf(plain, {}, lambda2, flint.dielectric());
   CHECK(lambda2.secondary_terminated());
 }
 
