@@ -167,13 +167,12 @@ struct FilmLanes {
   }
 
   // Each lane's reflectance: the bare base's blended by the weight with the filmed one, for the
-  // base's relative index base(i) (complex for a metal). cos_theta < 0: light from inside a
-  // dielectric base. In the complex sum, lanes of the same indices share the interfaces'
-  // coefficients.
+  // base's relative index base(i) (real for a dielectric, complex for a metal). cos_theta < 0:
+  // light from inside a dielectric base. In the complex sum, lanes of the same indices share the
+  // interfaces' coefficients.
   template <typename BaseIndex>
   SampledSpectrum<N> reflectance(float cos_theta, const BaseIndex& base) const {
-    if constexpr (std::is_floating_point_v<std::remove_cvref_t<std::invoke_result_t<BaseIndex, int>>>)
-      if (const auto R = real_reflectance(cos_theta, base)) return *R;
+    if (const auto R = propagating_reflectance(cos_theta, base)) return *R;
     using C = std::complex<float>;
     SampledSpectrum<N> R;
     std::optional<FilmInterfaces::Top> top;
@@ -200,38 +199,58 @@ struct FilmLanes {
   }
 
  private:
-  // The same in real arithmetic, for light from the ambient onto a dielectric base (index eta(i))
-  // through a film in which it propagates (q_f, q_b > 0): every amplitude coefficient is then real
-  // and the phase of modulus 1, so per polarisation, with φ = k q_f,
-  //   R = |r_af + r_fb e^{iφ}|² / |1 + r_af r_fb e^{iφ}|²
-  //     = ((r_af + r_fb cos φ)² + (r_fb sin φ)²) / ((1 + r_af r_fb cos φ)² + (r_af r_fb sin φ)²).
+  // The same for light from the ambient through a film in which it propagates (q_f real), onto a
+  // base of real or complex index: the phase e^{iφ}, φ = k q_f, has modulus 1 and r_af is real,
+  // so per polarisation, with z = r_fb e^{iφ} in real and imaginary parts,
+  //   R = |r_af + z|² / |1 + r_af z|² = ((r_af + z_re)² + z_im²) / ((1 + r_af z_re)² + (r_af z_im)²).
   // Nothing when some lane falls outside that case (the complex sum above takes it). The lanes'
   // loop has no branch and no library call, so it runs on all lanes at once (SIMD).
-  template <typename Eta>
-  std::optional<SampledSpectrum<N>> real_reflectance(float cos_theta, const Eta& eta) const {
+  template <typename BaseIndex>
+  std::optional<SampledSpectrum<N>> propagating_reflectance(float cos_theta, const BaseIndex& base) const {
     if (cos_theta < 0) return std::nullopt;
     const float c = std::min(cos_theta, 1.f), s2 = 1 - c * c;
-    std::array<float, N> n2b;
+    constexpr bool metal = !std::is_floating_point_v<std::remove_cvref_t<std::invoke_result_t<BaseIndex, int>>>;
+    std::array<float, N> n_re, n_im;
     bool propagates = true;
     for (int i = 0; i < N; ++i) {
-      n2b[i] = eta(i) * eta(i);
-      propagates &= (ior[i] * ior[i] > s2) & (n2b[i] > s2);
+      const auto b = base(i);
+      if constexpr (metal)
+        n_re[i] = b.real(), n_im[i] = b.imag();
+      else
+        n_re[i] = b, n_im[i] = 0;
+      // A dielectric base must also let the light in (q_b real), as the real sum needs.
+      propagates &= (ior[i] * ior[i] > s2) & (metal || n_re[i] * n_re[i] > s2);
     }
     if (!propagates) return std::nullopt;
     SampledSpectrum<N> R;
     for (int i = 0; i < N; ++i) {
-      const float n2f = ior[i] * ior[i];
-      const float q_f = std::sqrt(n2f - s2), q_b = std::sqrt(n2b[i] - s2);
+      const float n2f = ior[i] * ior[i], q_f = std::sqrt(n2f - s2);
+      // n_b² and q_b = √(n_b² − s²), the principal root from the larger of its parts.
+      const float n2b_re = n_re[i] * n_re[i] - n_im[i] * n_im[i], n2b_im = 2 * n_re[i] * n_im[i];
+      const float x = n2b_re - s2, big = std::sqrt((std::sqrt(x * x + n2b_im * n2b_im) + std::abs(x)) / 2);
+      const float small = n2b_im / (2 * big + 1e-30f);  // big = 0 only where n2b_im = 0
+      // n, k ≥ 0, so both parts are ≥ 0: the larger is the real part where x ≥ 0.
+      const float qb_re = x >= 0 ? big : small, qb_im = x >= 0 ? small : big;
       const float af_s = (c - q_f) / (c + q_f), af_p = (n2f * c - q_f) / (n2f * c + q_f);
-      const float fb_s = (q_f - q_b) / (q_f + q_b), fb_p = (n2b[i] * q_f - n2f * q_b) / (n2b[i] * q_f + n2f * q_b);
-      const float bare = (sqr((af_s + fb_s) / (1 + af_s * fb_s)) + sqr((af_p + fb_p) / (1 + af_p * fb_p))) / 2;
+      // r_fb = (a − b) / (a + b) = (a − b)(a + b)* / |a + b|², s: a = q_f, b = q_b; p: a = n_b² q_f, b = n_f² q_b.
+      const auto ratio = [](float a_re, float a_im, float b_re, float b_im) {
+        const float d_re = a_re - b_re, d_im = a_im - b_im, s_re = a_re + b_re, s_im = a_im + b_im;
+        const float den = s_re * s_re + s_im * s_im;
+        return std::array<float, 2>{(d_re * s_re + d_im * s_im) / den, (d_im * s_re - d_re * s_im) / den};
+      };
+      const auto fb_s = ratio(q_f, 0, qb_re, qb_im);
+      const auto fb_p = ratio(n2b_re * q_f, n2b_im * q_f, n2f * qb_re, n2f * qb_im);
       const SinCos phi = sin_cos(k[i] * q_f);
       // A vanishing denominator (grazing) gives 1: min(1, x/0) is 1 for x/0 = inf or NaN.
-      const auto airy = [&](float r1, float r2) {
-        const float den = sqr(1 + r1 * r2 * phi.cos) + sqr(r1 * r2 * phi.sin);
-        return std::min(1.f, (sqr(r1 + r2 * phi.cos) + sqr(r2 * phi.sin)) / den);
+      const auto airy = [](float r1, float z_re, float z_im) {
+        const float den = sqr(1 + r1 * z_re) + sqr(r1 * z_im);
+        return std::min(1.f, (sqr(r1 + z_re) + sqr(z_im)) / den);
       };
-      R[i] = bare + weight * ((airy(af_s, fb_s) + airy(af_p, fb_p)) / 2 - bare);
+      const auto filmed = [&](float r1, const std::array<float, 2>& r2) {
+        return airy(r1, r2[0] * phi.cos - r2[1] * phi.sin, r2[0] * phi.sin + r2[1] * phi.cos);
+      };
+      const float bare = (airy(af_s, fb_s[0], fb_s[1]) + airy(af_p, fb_p[0], fb_p[1])) / 2;
+      R[i] = bare + weight * ((filmed(af_s, fb_s) + filmed(af_p, fb_p)) / 2 - bare);
     }
     return R;
   }
