@@ -13,7 +13,7 @@ namespace prism {
 
 template <int N>
 struct LightContribution {
-  SampledSpectrum<N> f_L;  // f(wo, wi) · L_i · |cos θ_i|, not yet divided by the pdf
+  SampledSpectrum<N> f_L;  // f(wo, wi) · L_i · |cos θ_i| · transmittance, not yet divided by the pdf
   float light_pdf;         // solid-angle pdf of the light sample (1 for a point light)
   float bsdf_pdf;          // the BSDF's pdf of sampling the same direction (DispersiveBsdf: p̄)
 };
@@ -42,8 +42,9 @@ std::optional<LightContribution<N>> light_contribution(const World& world, const
   const SampledSpectrum<N> f = e.f * abs_cos_theta(wi);
   if (f.is_zero()) return std::nullopt;
   ++counters.shadow;
-  if (world.occluded(sample->shadow_ray)) return std::nullopt;
-  return LightContribution<N>{f * sample->L, sample->pdf, e.pdf};
+  const float T = world.transmittance(sample->shadow_ray);
+  if (T == 0) return std::nullopt;
+  return LightContribution<N>{f * sample->L * T, sample->pdf, e.pdf};
 }
 
 }  // namespace prism

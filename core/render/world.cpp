@@ -239,13 +239,33 @@ std::optional<SurfaceInteraction> World::intersect(Ray ray) const {
       si.t += travelled;
       return si;
     }
-    // Continue past the cut-away surface, along the same line.
-    const Vec3f o = offset_ray_origin(si.p, si.p_error, si.n, ray.d);
-    const float step = length(o - ray.o);
-    travelled += step;
-    ray = {o, ray.d, ray.tmax - step};
+    const Ray next = beyond(si, ray);
+    travelled += length(next.o - ray.o);
+    ray = next;
     if (!(ray.tmax > 0)) return std::nullopt;
   }
+}
+
+float World::transmittance(Ray ray) const {
+  if (!features_.alpha) return accel_.occluded(ray) ? 0.f : 1.f;
+  float T = 1;
+  for (;;) {
+    AccelHit hit;
+    if (!accel_.intersect(ray, hit)) return T;
+    const SurfaceInteraction si = interaction(ray, hit);
+    const Material& m = *si.material;
+    if (m.alpha_mode == AlphaMode::opaque) return 0;
+    const float opacity = m.opacity(si.at);
+    if (m.alpha_mode == AlphaMode::mask ? opacity >= m.alpha_cutoff : (T *= 1 - opacity) <= 0) return 0;
+    ray = beyond(si, ray);
+    if (!(ray.tmax > 0)) return T;
+  }
+}
+
+// The rest of `ray` past the surface it hit at si: the same line, from just beyond that surface.
+Ray World::beyond(const SurfaceInteraction& si, const Ray& ray) {
+  const Vec3f o = offset_ray_origin(si.p, si.p_error, si.n, ray.d);
+  return {o, ray.d, ray.tmax - length(o - ray.o)};
 }
 
 }  // namespace prism

@@ -27,6 +27,10 @@ class World {
   // and BLEND; BLEND decided stochastically by a hash of the ray, pbrt-v4 style).
   std::optional<SurfaceInteraction> intersect(Ray ray) const;
   bool occluded(const Ray& ray) const { return features_.alpha ? intersect(ray).has_value() : accel_.occluded(ray); }
+  // The fraction of light that gets through along `ray`: 0 if an opaque surface blocks it, else the
+  // product of 1 − alpha of the BLEND surfaces it crosses (MASK cut-outs pass it whole). The
+  // expectation of `occluded`'s stochastic answer, for shadow rays (Cycles' transparent shadows).
+  float transmittance(Ray ray) const;
 
   const Scene& scene() const { return scene_; }
   const SceneFeatures& features() const { return features_; }
@@ -52,6 +56,7 @@ class World {
   std::array<Vec3f, 3> world_vertices(const Instance& inst, uint32_t prim) const;
   SurfaceInteraction interaction(const Ray& ray, const AccelHit& hit) const;
   bool cut_away(const SurfaceInteraction& si, const Ray& ray) const;
+  static Ray beyond(const SurfaceInteraction& si, const Ray& ray);
   void add_lights();
 
   const Scene& scene_;

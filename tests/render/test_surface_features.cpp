@@ -68,6 +68,37 @@ TEST_CASE("alpha BLEND lets the sky through in proportion to 1 - alpha") {
   test::check_mean(img, 0, 0, 16, 16, 0.7, 0.02);
 }
 
+TEST_CASE("light sampled through an alpha BLEND sheet arrives scaled by 1 - alpha, at every sample") {
+  // A white Lambert floor lit by a point light through a black BLEND sheet of alpha 0.3, seen by a
+  // camera under the sheet: only light sampling reaches a point light, and a shadow ray carries the
+  // sheet's transmittance, so every pixel is 0.7 of the floor's without the sheet, not 0 or 1 of it
+  // by chance. (Paths that bounce up meet the black sheet or the black sky: nothing more.)
+  const auto render = [](bool sheet) {
+    Scene scene;
+    PbrMaterial white = PbrMaterial::plastic(Rgb{1, 1, 1}, 1);
+    white.specular = 0;
+    scene.materials.push_back(Material{.name = "floor", .kind = white});
+    test::add_mesh(scene, test::make_quad({-2, -2, 0}, {4, 0, 0}, {0, 4, 0}, 0));
+    if (sheet) {
+      PbrMaterial p = black();
+      p.alpha = 0.3f;
+      Material m{.name = "sheet", .kind = p};
+      m.alpha_mode = AlphaMode::blend;
+      scene.materials.push_back(std::move(m));
+      test::add_mesh(scene, test::make_quad({-2, -2, 1}, {4, 0, 0}, {0, 4, 0}, 1));
+    }
+    scene.point_lights.push_back({"lamp", {0.2f, 0.1f, 2.f}, RgbIlluminantSpectrum(Rgb{1, 1, 1})});
+    return test::render_rgb(scene, test::look_at({0, 0, 0.5f}, {0, 0, 0}, 60.f), 12, 12, 4);
+  };
+  const auto open = render(false), through = render(true);
+  CHECK(through.stats.invalid_samples == 0);
+  for (size_t i = 0; i < open.rgb.size(); ++i) {
+    INFO("value " << i << ": " << through.rgb[i] << " through the sheet, " << open.rgb[i] << " without");
+    REQUIRE(open.rgb[i] > 0);
+    CHECK(through.rgb[i] == Approx(0.7 * open.rgb[i]).epsilon(1e-4));
+  }
+}
+
 TEST_CASE("a textured, vertex-coloured diffuse surface shows texture x factor x vertex colour") {
   PbrMaterial p = PbrMaterial::plastic(Rgb{1, 0.5f, 1}, 1);
   p.specular = 0;  // pure Lambert, so the answer is the albedo
