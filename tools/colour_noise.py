@@ -29,6 +29,7 @@ except ImportError as e:
         os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
     print("colour_noise: SKIPPED: %s" % e)
     sys.exit(0)
+from compare_cycles import LUMA, load_rgb
 
 
 def main():
@@ -53,16 +54,13 @@ def main():
             start = time.time()
             subprocess.run(cmd, check=True)
             seconds.append(time.time() - start)
-            img = exrstats.read_exr(exr)
-            names = exrstats.rgb_names(list(img["channels"]))
-            images.append(np.stack([np.asarray(img["channels"][c], dtype=np.float64) for c in names], -1)
-                          .reshape(img["height"], img["width"], 3))
+            images.append(load_rgb(exrstats, exr)[0])
         x = np.stack(images)  # seeds, height, width, RGB
         if a.roi:
             x0, y0, x1, y1 = (float(v) for v in a.roi.split(","))
             h, w = x.shape[1:3]
             x = x[:, int(y0 * h):int(y1 * h), int(x0 * w):int(x1 * w)]
-        y = x @ np.array([0.2126, 0.7152, 0.0722])
+        y = x @ np.array(LUMA)
         channels = {"R": x[..., 0], "G": x[..., 1], "B": x[..., 2], "Y": y, "R-Y": x[..., 0] - y, "B-Y": x[..., 2] - y}
         print("%s: %.2f s/render" % (binary, statistics.median(seconds)))
         for name, v in channels.items():
