@@ -168,6 +168,19 @@ class PbrBsdf {
     if (mu != outgoing_.mu) outgoing_ = {mu, E(mu), false, 0.f, {}};
     return outgoing_.e;
   }
+  // E_o's record completed with each lane's E(μ_o) and the white lobe's, for the lanes' coupling.
+  // (Called only with the extensions' per-lane coupling; `film`: it has a film's excess.)
+  const auto& lanes_outgoing(float mu, bool film) const {
+    E_o(mu);
+    if (!outgoing_.lanes) {
+      const SpecularAlbedo& table = SpecularAlbedo::table();
+      const SpecularAlbedo::Direction o = SpecularAlbedo::direction(outgoing_.mu, roughness_);
+      outgoing_.white = film ? table.white(o) : 0.f;
+      table.E(o, extras_->lanes->eta, compensated_, outgoing_.lane_e);
+      outgoing_.lanes = true;
+    }
+    return outgoing_;
+  }
   // The coupling factor (1 − E(μ_o))(1 − E(μ_i)) / (1 − E_avg): one value, or one per lane;
   // e_o = E(μ_o), found with the lobe probabilities.
   float scalar_coupling(float e_o, const Vec3f& wi) const {
@@ -182,16 +195,10 @@ class PbrBsdf {
       const SpecularAlbedo& table = SpecularAlbedo::table();
       const bool film = lanes.excess.max() > 0;
       // μ_o and μ_i found on the tables once, for all the lanes' indices; what μ_o gives, once per wo.
-      E_o(wo.z);
-      if (!outgoing_.lanes) {
-        const SpecularAlbedo::Direction o = SpecularAlbedo::direction(outgoing_.mu, roughness_);
-        outgoing_.white = film ? table.white(o) : 0.f;
-        table.E(o, lanes.eta, compensated_, outgoing_.lane_e);
-        outgoing_.lanes = true;
-      }
+      const Outgoing& o = lanes_outgoing(wo.z, film);
       const SpecularAlbedo::Direction in = SpecularAlbedo::direction(std::abs(wi.z), roughness_);
-      const float white_o = outgoing_.white, white_i = film ? table.white(in) : 0.f;
-      const std::array<float, N>& lane_e_o = outgoing_.lane_e;  // each lane's E(μ) at its own index, before specular_
+      const float white_o = o.white, white_i = film ? table.white(in) : 0.f;
+      const std::array<float, N>& lane_e_o = o.lane_e;  // each lane's E(μ) at its own index, before specular_
       std::array<float, N> lane_e_i;
       table.E(in, lanes.eta, compensated_, lane_e_i);
       SampledSpectrum<N> c;
@@ -291,7 +298,7 @@ class PbrBsdf {
     float white;
     std::array<float, N> lane_e;  // (before specular_)
   };
-  mutable Outgoing outgoing_;
+  mutable Outgoing outgoing_;  // a cache: safe because a Bsdf is built and used within one thread
 };
 
 // The glTF base under its top layers, KHR_materials_sheen and KHR_materials_clearcoat, each
@@ -448,7 +455,8 @@ class LayeredBsdf {
 
   // The coat's, the sheen's and the base's shares of the light scattered towards wo.
   std::array<float, 3> layer_probabilities(const Vec3f& wo) const {
-    const float c = outgoing(wo).coat, t = 1 - c, s = outgoing_.sheen;
+    const Outgoing& o = outgoing(wo);
+    const float c = o.coat, t = 1 - c, s = o.sheen;
     std::array<float, 3> w = {c, t * s, t * (1 - s)};
     const float sum = w[0] + w[1] + w[2];
     if (!(sum > 0)) return {0, 0, 1};
@@ -467,7 +475,7 @@ class LayeredBsdf {
   SheenBsdf<N> sheen_;
   float sheen_weight_;
   SheenAlbedo::Roughness sheen_roughness_;  // where the sheen's α falls on its albedo table
-  mutable Outgoing outgoing_;
+  mutable Outgoing outgoing_;               // a cache: safe because a Bsdf is built and used within one thread
 };
 
 }  // namespace prism
