@@ -1,5 +1,6 @@
 #include "render/world.h"
 
+#include <algorithm>
 #include <bit>
 
 #include "accel/triangle.h"
@@ -218,9 +219,9 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
   return si;
 }
 
-bool World::cut_away(const SurfaceInteraction& si, const Ray& ray) const {
+bool World::cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_blend) const {
   const Material& m = *si.material;
-  if (m.alpha_mode == AlphaMode::opaque) return false;
+  if (m.alpha_mode == AlphaMode::opaque || (keep_blend && m.alpha_mode == AlphaMode::blend)) return false;
   const float opacity = m.opacity(si.at);
   if (m.alpha_mode == AlphaMode::mask) return opacity < m.alpha_cutoff;
   const uint64_t h = hash_ints(std::bit_cast<uint32_t>(ray.o.x), std::bit_cast<uint32_t>(ray.o.y),
@@ -229,13 +230,18 @@ bool World::cut_away(const SurfaceInteraction& si, const Ray& ray) const {
   return float(h >> 40) * 0x1p-24f >= opacity;
 }
 
-std::optional<SurfaceInteraction> World::intersect(Ray ray) const {
+float World::blend_opacity(const SurfaceInteraction& si) {
+  const Material& m = *si.material;
+  return m.alpha_mode == AlphaMode::blend ? std::clamp(m.opacity(si.at), 0.f, 1.f) : 1.f;
+}
+
+std::optional<SurfaceInteraction> World::intersect(Ray ray, bool keep_blend) const {
   float travelled = 0;
   for (;;) {
     AccelHit hit;
     if (!accel_.intersect(ray, hit)) return std::nullopt;
     SurfaceInteraction si = interaction(ray, hit);
-    if (!features_.alpha || !cut_away(si, ray)) {
+    if (!features_.alpha || !cut_away(si, ray, keep_blend)) {
       si.t += travelled;
       return si;
     }
@@ -262,7 +268,6 @@ float World::transmittance(Ray ray) const {
   }
 }
 
-// The rest of `ray` past the surface it hit at si: the same line, from just beyond that surface.
 Ray World::beyond(const SurfaceInteraction& si, const Ray& ray) {
   const Vec3f o = offset_ray_origin(si.p, si.p_error, si.n, ray.d);
   return {o, ray.d, ray.tmax - length(o - ray.o)};
