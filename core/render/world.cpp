@@ -151,7 +151,7 @@ T interpolate(const std::vector<T>& values, const Mesh& m, uint32_t prim, const 
 
 }  // namespace
 
-SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const {
+SurfaceInteraction World::surface_point(const Ray& ray, const AccelHit& hit) const {
   const Instance& instance = scene_.instances[hit.instance];
   const Mesh& m = scene_.meshes[instance.mesh];
   const bool mirrored = instance.to_world.determinant() < 0;  // winding (and so the front side) flips
@@ -171,7 +171,14 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
     if (!m.uv[set].empty()) si.at.uv[set] = interpolate(m.uv[set], m, hit.prim, b);
   if (!m.colors.empty()) si.at.vertex_color = interpolate(m.colors, m, hit.prim, b);
   if (const auto& spectra = spectra_[m.material]) si.at.spectra = &*spectra;
+  return si;
+}
 
+void World::shade(SurfaceInteraction& si, const AccelHit& hit) const {
+  const Instance& instance = scene_.instances[hit.instance];
+  const Mesh& m = scene_.meshes[instance.mesh];
+  const bool mirrored = instance.to_world.determinant() < 0;
+  const float b[3] = {hit.b0, hit.b1, hit.b2};
   if (!m.normals.empty()) {
     const Vec3f ns = transform_normal(instance.to_world, interpolate(m.normals, m, hit.prim, b));
     const float len = length(ns);
@@ -182,7 +189,7 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
   const auto* pbr = std::get_if<PbrMaterial>(&material.kind);
   const bool anisotropic = pbr && pbr->anisotropic();
   const bool coat_map = pbr && pbr->clearcoat && pbr->clearcoat->normal_texture;
-  if (m.tangents.empty() || !(material.normal_texture || anisotropic || coat_map)) return si;
+  if (m.tangents.empty() || !(material.normal_texture || anisotropic || coat_map)) return;
   // The tangent frame (glTF §3.9.3): T, and B = sign · N × T, both ⊥ the normal n they turn about.
   const auto t4 = interpolate(m.tangents, m, hit.prim, b);
   const Vec3f t_world(instance.to_world.vector(Vec3d(t4[0], t4[1], t4[2])));
@@ -216,7 +223,7 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
   if (coat_map)
     if (const auto n = map_normal(*pbr->clearcoat->normal_texture, pbr->clearcoat->normal_scale))
       si.at.coat_normal = si.shading_frame().to_local(*n);  // in the frame the BSDF sees
-  return si;
+  return;
 }
 
 bool World::cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_blend) const {
@@ -240,8 +247,9 @@ std::optional<SurfaceInteraction> World::intersect(Ray ray, bool keep_blend) con
   for (;;) {
     AccelHit hit;
     if (!accel_.intersect(ray, hit)) return std::nullopt;
-    SurfaceInteraction si = interaction(ray, hit);
+    SurfaceInteraction si = surface_point(ray, hit);
     if (!features_.alpha || !cut_away(si, ray, keep_blend)) {
+      shade(si, hit);
       si.t += travelled;
       return si;
     }
@@ -258,7 +266,7 @@ float World::transmittance(Ray ray) const {
   for (;;) {
     AccelHit hit;
     if (!accel_.intersect(ray, hit)) return T;
-    const SurfaceInteraction si = interaction(ray, hit);
+    const SurfaceInteraction si = surface_point(ray, hit);
     const Material& m = *si.material;
     if (m.alpha_mode == AlphaMode::opaque) return 0;
     const float opacity = m.opacity(si.at);

@@ -59,7 +59,10 @@ class World {
 
  private:
   std::array<Vec3f, 3> world_vertices(const Instance& inst, uint32_t prim) const;
-  SurfaceInteraction interaction(const Ray& ray, const AccelHit& hit) const;
+  // A hit's point, geometric normal, material and texture coordinates (what alpha needs), then its
+  // shading normal and tangent (interpolated, normal-mapped): only for the surfaces not cut away.
+  SurfaceInteraction surface_point(const Ray& ray, const AccelHit& hit) const;
+  void shade(SurfaceInteraction& si, const AccelHit& hit) const;
   bool cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_blend) const;
   void add_lights();
 
