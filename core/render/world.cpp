@@ -239,7 +239,9 @@ bool World::cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_ble
 
 float World::blend_opacity(const SurfaceInteraction& si) {
   const Material& m = *si.material;
-  return m.alpha_mode == AlphaMode::blend ? std::clamp(m.opacity(si.at), 0.f, 1.f) : 1.f;
+  if (m.alpha_mode != AlphaMode::blend) return 1.f;
+  const float a = m.opacity(si.at);
+  return a < 1 ? std::max(a, 0.f) : 1.f;  // a NaN (from a hostile vertex colour) is opaque, as cut_away has it
 }
 
 std::optional<SurfaceInteraction> World::intersect(Ray ray, bool keep_blend) const {
