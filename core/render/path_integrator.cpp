@@ -31,13 +31,15 @@ SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& s
 // An alpha BLEND surface (opacity alpha) is the surface beside a hole, as Cycles' transparent BSDF
 // mixed in by alpha. The path passes through (returns true) or stays with probabilities in
 // proportion to the two shares' throughputs at this BSDF sample, 1 − α and α w (w: the sample's
-// f cos / pdf, averaged over the lanes; 0 without a sample), and beta takes its share over that
-// probability: unbiased for any such split (w is drawn first, the choice given w), and beta
-// changes little whichever way the path goes, where choosing the surface with probability α
-// followed a dark surface α of the time (GlassVaseFlowers' BLEND vase: 5x Cycles' variance).
+// f cos / pdf, averaged over the lanes), and beta takes its share over that probability: unbiased
+// for any such split (w is drawn first, the choice given w), and beta changes little whichever way
+// the path goes, where choosing the surface with probability α followed a dark surface α of the
+// time (GlassVaseFlowers' BLEND vase: 5x Cycles' variance). Light is sampled only where the path
+// stays, so staying must stay possible: without a sample to follow (w ≤ 0: none, or one of no
+// weight) the split is α to 1 − α, as if w were 1.
 template <int N>
 bool pass_through(float alpha, float w, float u, SampledSpectrum<N>& beta) {
-  const float pass = (1 - alpha) / ((1 - alpha) + alpha * (w > 0 ? w : 0.f));
+  const float pass = (1 - alpha) / ((1 - alpha) + alpha * (w > 0 ? w : 1.f));
   const bool passes = u < pass;
   beta *= passes ? (1 - alpha) / pass : alpha / (1 - pass);
   return passes;
