@@ -69,8 +69,8 @@ class PbrBsdf {
       const float white_average = extras->lane_excess ? SpecularAlbedo::table().white_average(roughness_) : 0.f;
       LaneCoupling& lanes = *extras_->lanes;
       for (int i = 0; i < N; ++i) {
-        lanes.eta[i] = (*extras->lane_etas)[i];
-        const bool same = i > 0 && lanes.eta[i] == lanes.eta[i - 1] && lanes.excess[i] == lanes.excess[i - 1];
+        lanes.eta[i] = SpecularAlbedo::index((*extras->lane_etas)[i]);
+        const bool same = i > 0 && lanes.eta[i].eta == lanes.eta[i - 1].eta && lanes.excess[i] == lanes.excess[i - 1];
         lanes.e_avg[i] = same ? lanes.e_avg[i - 1]
                               : specular * (SpecularAlbedo::table().average(roughness_, lanes.eta[i], compensated) +
                                             lanes.excess[i] * white_average);
@@ -273,7 +273,7 @@ class PbrBsdf {
   }
 
   struct LaneCoupling {
-    std::array<float, N> eta;  // as an array: the albedo tables read all lanes at once
+    std::array<SpecularAlbedo::Index, N> eta;  // each lane's index, placed on the albedo tables once
     SampledSpectrum<N> excess, e_avg;
   };
   struct Parts {
