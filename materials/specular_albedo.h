@@ -46,15 +46,16 @@ class SpecularAlbedo {
     int h;
     float th;
   };
-  static Index index(float eta);
+  static void index(std::span<const float> eta, std::span<Index> out);
 
   static const SpecularAlbedo& table();
   // E at one direction for several indices (one per lane) at once: the tables of the η nodes
   // the lanes fall between are each read once, then every lane interpolates its own.
   void E(const Direction& d, std::span<const Index> eta, bool compensated, std::span<float> out) const;
   float E(float mu, const Roughness& r, float eta, bool compensated) const;
-  float average(const Roughness& r, float eta, bool compensated) const { return average(r, index(eta), compensated); }
-  float average(const Roughness& r, const Index& eta, bool compensated) const;
+  float average(const Roughness& r, float eta, bool compensated) const;
+  // The averages for several indices (one per lane) at once, as E above.
+  void average(const Roughness& r, std::span<const Index> eta, bool compensated, std::span<float> out) const;
   float interface(float mu, const Roughness& r, float eta) const;
   float white(const Direction& d) const;
   float white(float mu, const Roughness& r) const;
