@@ -118,8 +118,9 @@ struct Accel::Closest {
 };
 
 template <bool AnyHit>
-bool Accel::test_blocks(const TriangleTree& tree, uint32_t first, uint32_t count, uint32_t instance,
-                        const WatertightRay& ray, Closest& closest) const {
+[[gnu::always_inline]] inline bool Accel::test_blocks(const TriangleTree& tree, uint32_t first, uint32_t count,
+                                                      uint32_t instance, const WatertightRay& ray,
+                                                      Closest& closest) const {
   const uint32_t base = instance == kWorld ? 0 : first_prim_[instance];
   bool found = false;
   for (uint32_t b = first; b < first + count; ++b) {
@@ -143,7 +144,7 @@ template <bool AnyHit>
 bool Accel::trace(const Ray& ray, Closest& closest) const {
   // The world tree's leaves, and its solo leaves: the instances of shared meshes.
   const WatertightRay world_ray(ray);
-  const auto leaf = [&](uint32_t first, uint32_t count) {
+  const auto leaf = [&](uint32_t first, uint32_t count) __attribute__((always_inline)) {
     return test_blocks<AnyHit>(world_, first, count, kWorld, world_ray, closest);
   };
   const auto enter = [&](uint32_t instance) {

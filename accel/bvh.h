@@ -6,6 +6,7 @@
 // Embree does (Wald et al. 2014). Leaves are runs of blocks of a fixed number of primitive slots,
 // so that a leaf's primitives can be tested together too. Traversal visits children nearest first.
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -55,21 +56,37 @@ struct BvhBuildOptions {
 // Per-ray constants of the slab test.
 struct BvhRay {
   simd::f8 o[3], inv_near[3], inv_far[3];
-  size_t near[3], far[3];  // per axis, byte offsets in BvhNode::planes of the rows the ray enters and leaves by
+  // Per axis, the byte offsets in BvhNode::planes of the rows the ray enters by (rows[0..2]) and
+  // leaves by (rows[3..5]): kRows' entry for the signs of the direction.
+  const size_t* rows;
 
   explicit BvhRay(const Ray& ray) {
     // The near distance is rounded down and the far one up, by more than the four roundings of
     // (p − o)·(1/d)·c, so that no box the ray touches is ever missed (pbrt-v4 §6.8.2).
     constexpr float kDown = 1.f - 2.f * gamma(5), kUp = 1.f + 2.f * gamma(5);
+    // The three axes at once (one division; the per-ray set-up is a good part of a short ray's cost).
+    const simd::f4 inv = 1.f / simd::f4{ray.d.x, ray.d.y, ray.d.z, 1.f}, down = inv * kDown, up = inv * kUp;
     for (int a = 0; a < 3; ++a) {
-      const float inv = 1.f / ray.d[a];
       o[a] = simd::broadcast(ray.o[a]);
-      inv_near[a] = simd::broadcast(inv * kDown);
-      inv_far[a] = simd::broadcast(inv * kUp);
-      near[a] = (std::signbit(inv) ? a + 3 : a) * sizeof(BvhNode::planes[0]);
-      far[a] = (std::signbit(inv) ? a : a + 3) * sizeof(BvhNode::planes[0]);
+      inv_near[a] = simd::broadcast(down[a]);
+      inv_far[a] = simd::broadcast(up[a]);
     }
+    rows = kRows[simd::bits(inv < 0.f)].data();
   }
+
+ private:
+  static constexpr size_t kRow = sizeof(BvhNode::planes[0]);
+  // kRows[s]: entry and exit rows for direction signs s (bit a set: d[a] < 0, entering by hi).
+  static constexpr auto kRows = [] {
+    std::array<std::array<size_t, 6>, 8> rows{};
+    for (int s = 0; s < 8; ++s)
+      for (int a = 0; a < 3; ++a) {
+        const bool negative = s >> a & 1;
+        rows[s][a] = (negative ? a + 3 : a) * kRow;
+        rows[s][a + 3] = (negative ? a : a + 3) * kRow;
+      }
+    return rows;
+  }();
 };
 
 class Bvh {
@@ -135,13 +152,13 @@ bool Bvh::traverse(const Ray& r, float& tmax, const Block* blocks, Leaf&& leaf, 
         return (simd::load(reinterpret_cast<const float*>(planes + offset)) - ray.o[a]) * inv;
       };
       const f8 t_enter =
-          simd::max_ignore_nan(slab(ray.near[0], 0, ray.inv_near[0]),
-                               simd::max_ignore_nan(slab(ray.near[1], 1, ray.inv_near[1]),
-                                                    simd::max_ignore_nan(slab(ray.near[2], 2, ray.inv_near[2]), f8{})));
+          simd::max_ignore_nan(slab(ray.rows[0], 0, ray.inv_near[0]),
+                               simd::max_ignore_nan(slab(ray.rows[1], 1, ray.inv_near[1]),
+                                                    simd::max_ignore_nan(slab(ray.rows[2], 2, ray.inv_near[2]), f8{})));
       const f8 t_leave = simd::min_ignore_nan(
-          slab(ray.far[0], 0, ray.inv_far[0]),
-          simd::min_ignore_nan(slab(ray.far[1], 1, ray.inv_far[1]),
-                               simd::min_ignore_nan(slab(ray.far[2], 2, ray.inv_far[2]), simd::broadcast(tmax))));
+          slab(ray.rows[3], 0, ray.inv_far[0]),
+          simd::min_ignore_nan(slab(ray.rows[4], 1, ray.inv_far[1]),
+                               simd::min_ignore_nan(slab(ray.rows[5], 2, ray.inv_far[2]), simd::broadcast(tmax))));
       uint32_t mask = simd::bits(t_enter <= t_leave);
       if (mask) {
         int i = std::countr_zero(mask);

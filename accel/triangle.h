@@ -132,10 +132,10 @@ struct EdgeFunctions {
   // offset by (pbrt-v4 §6.8.4, from the error of each step above). The shear's share of the
   // error is |s|·|z| rather than pbrt's |z| (which takes |s| ≤ 1): otherwise the bound of a ray
   // grazing a small triangle exceeds t itself, and true hits are lost.
-  const auto magnitude = [](f8 x) { return x < 0.f ? -x : x; };
-  const auto largest = [&](f8 p, f8 q, f8 s) {
-    const f8 m = magnitude(p) > magnitude(q) ? magnitude(p) : magnitude(q);
-    return m > magnitude(s) ? m : magnitude(s);
+  using simd::abs;
+  const auto largest = [](f8 p, f8 q, f8 s) {
+    const f8 m = abs(p) > abs(q) ? abs(p) : abs(q);
+    return m > abs(s) ? m : abs(s);
   };
   const f8 max_x = largest(ax, bx, cx), max_y = largest(ay, by, cy), max_z = largest(az, bz, cz);
   const f8 delta_x = gamma(5) * (max_x + 2 * std::abs(r.sx) * max_z);
@@ -143,7 +143,7 @@ struct EdgeFunctions {
   const f8 delta_z = gamma(3) * max_z;
   const f8 delta_e = 2 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
   const f8 max_e = largest(u, v, w);
-  const f8 delta_t = 3 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * magnitude(hits.inv_det);
+  const f8 delta_t = 3 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * abs(hits.inv_det);
   hits.mask = simd::bits(candidates & (hits.t > delta_t));
   return hits;
 }
