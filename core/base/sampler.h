@@ -82,6 +82,7 @@ class Sampler {
 
   void start_pixel_sample(Vec2i pixel, int64_t sample_index, int replicate = 0) {
     pixel_hash_ = replicate == 0 ? hash_ints(pixel.x, pixel.y, seed_) : hash_ints(pixel.x, pixel.y, seed_, replicate);
+    pixel_state_ = hash_ints(pixel_hash_);
     reversed_index_ = sobol::reverse_bits(uint32_t(sample_index));
     dimension_ = 0;
     if (kind_ == SamplerKind::independent) {
@@ -99,7 +100,7 @@ class Sampler {
 
   float get_1d() {
     if (kind_ == SamplerKind::independent) return rng_.uniform();
-    const uint64_t h = hash_ints(pixel_hash_, dimension_++);
+    const uint64_t h = dimension_hash();
     return sobol::to_unit(scrambled_dimension0(shuffled(h), uint32_t(h >> 32)));
   }
 
@@ -108,13 +109,16 @@ class Sampler {
       const float u = rng_.uniform();
       return {u, rng_.uniform()};
     }
-    const uint64_t h = hash_ints(pixel_hash_, dimension_++);
+    const uint64_t h = dimension_hash();
     const uint32_t i = shuffled(h), h2 = uint32_t(mix_bits(h));
     return {sobol::to_unit(scrambled_dimension0(i, uint32_t(h >> 32))),
             sobol::to_unit(sobol::nested_uniform_scramble(sobol::dimension1(i), h2))};
   }
 
  private:
+  // hash_ints(pixel_hash_, dimension) for the next dimension, its first round (the pixel's) done
+  // once per sample in start_pixel_sample.
+  uint64_t dimension_hash() { return hash_continue(pixel_state_, dimension_++); }
   // This dimension's own permutation of the pixel's sample indices (padding): the nested
   // scramble of the index, with its bit reversal done once per sample.
   uint32_t shuffled(uint64_t h) const {
@@ -129,7 +133,7 @@ class Sampler {
   uint64_t seed_;
   SamplerKind kind_;
   Rng rng_;
-  uint64_t pixel_hash_ = 0;
+  uint64_t pixel_hash_ = 0, pixel_state_ = 0;
   uint32_t reversed_index_ = 0, dimension_ = 0;
 };
 
