@@ -51,16 +51,6 @@ double schlick_matched_edge_tint(double r) {
 
 }  // namespace
 
-float ior_from_f0(float f0) {
-  const float root = std::sqrt(std::clamp(f0, 0.f, 0.9999f));  // F0 = 1: η → ∞
-  return (1 + root) / (1 - root);
-}
-
-float ior_with_scaled_f0(float eta, float c) {
-  const float scaled = ior_from_f0(sqr((eta - 1) / (eta + 1)) * std::max(c, 0.f));
-  return eta < 1 ? 1 / scaled : scaled;
-}
-
 std::array<float, 2> metal_nk_from_reflectance(float reflectance) {
   const double r = std::clamp(double(reflectance), 0.0, 0.999);  // r < 1 keeps k finite
   const auto nk = gulbrandsen_nk(r, schlick_matched_edge_tint(r));

@@ -2,6 +2,8 @@
 // Materials as the scene describes them (wavelength-independent), and the BSDF a material
 // yields at one hit for one path's wavelengths.
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <variant>
@@ -188,10 +190,17 @@ inline bool disperses(const Material& m, const Dielectric* front) {
 }
 
 // The relative index η ≥ 1 whose normal-incidence reflectance ((η − 1)/(η + 1))² is f0.
-float ior_from_f0(float f0);
+inline float ior_from_f0(float f0) {
+  const float root = std::sqrt(std::clamp(f0, 0.f, 0.9999f));  // F0 = 1: η → ∞
+  return (1 + root) / (1 - root);
+}
 // The relative index η' whose exact normal-incidence reflectance is that of η times c (at most
 // 1): KHR_materials_specular's coloured F0, on η's side of 1.
-float ior_with_scaled_f0(float eta, float c);
+// (Inline: make_bsdf finds one per lane at every hit of a specular colour.)
+inline float ior_with_scaled_f0(float eta, float c) {
+  const float scaled = ior_from_f0(sqr((eta - 1) / (eta + 1)) * std::max(c, 0.f));
+  return eta < 1 ? 1 / scaled : scaled;
+}
 
 // The n, k of a metal whose normal-incidence reflectance is r: Gulbrandsen's parametrisation
 // (2014, "Artist Friendly Metallic Fresnel", JCGT 3(4)) with the edge tint that gives the same

@@ -68,13 +68,11 @@ class PbrBsdf {
       extras_->lanes = LaneCoupling{{}, extras->lane_excess.value_or(SampledSpectrum<N>(0.f)), {}};
       const float white_average = extras->lane_excess ? SpecularAlbedo::table().white_average(roughness_) : 0.f;
       LaneCoupling& lanes = *extras_->lanes;
-      for (int i = 0; i < N; ++i) {
-        lanes.eta[i] = (*extras->lane_etas)[i];
-        const bool same = i > 0 && lanes.eta[i] == lanes.eta[i - 1] && lanes.excess[i] == lanes.excess[i - 1];
-        lanes.e_avg[i] = same ? lanes.e_avg[i - 1]
-                              : specular * (SpecularAlbedo::table().average(roughness_, lanes.eta[i], compensated) +
-                                            lanes.excess[i] * white_average);
-      }
+      std::array<float, N> eta, average;
+      for (int i = 0; i < N; ++i) eta[i] = (*extras->lane_etas)[i];
+      SpecularAlbedo::index(eta, lanes.eta);
+      SpecularAlbedo::table().average(roughness_, lanes.eta, compensated, average);
+      for (int i = 0; i < N; ++i) lanes.e_avg[i] = specular * (average[i] + lanes.excess[i] * white_average);
     }
   }
 
@@ -273,7 +271,7 @@ class PbrBsdf {
   }
 
   struct LaneCoupling {
-    std::array<float, N> eta;  // as an array: the albedo tables read all lanes at once
+    std::array<SpecularAlbedo::Index, N> eta;  // each lane's index, placed on the albedo tables once
     SampledSpectrum<N> excess, e_avg;
   };
   struct Parts {

@@ -21,31 +21,40 @@ namespace prism {
 
 class CharlieSheen {
  public:
-  explicit CharlieSheen(float alpha) : alpha_(std::clamp(alpha, 1e-3f, 1.f)) {}
+  explicit CharlieSheen(float alpha) : alpha_(std::clamp(alpha, 1e-3f, 1.f)), fit_(sqr(1 - alpha_)), L_half_(L(0.5f)) {}
 
   float D(const Vec3f& m) const {
     const float sin2 = std::max(0.f, 1 - m.z * m.z);
     return (2 + 1 / alpha_) * std::pow(sin2, 0.5f / alpha_) / (2 * kPi);
   }
-  float G(const Vec3f& wo, const Vec3f& wi) const { return 1 / (1 + Lambda(std::abs(wo.z)) + Lambda(std::abs(wi.z))); }
+  float G(const Vec3f& wo, const Vec3f& wi) const { return G(Lambda(std::abs(wo.z)), wi); }
+  // With Λ(μ_o) given (found once per wo).
+  float G(float lambda_o, const Vec3f& wi) const { return 1 / (1 + lambda_o + Lambda(std::abs(wi.z))); }
   // f / C for directions on the same side.
-  float value(const Vec3f& wo, const Vec3f& wi) const {
+  float value(const Vec3f& wo, const Vec3f& wi) const { return value(wo, wi, Lambda(std::abs(wo.z))); }
+  float value(const Vec3f& wo, const Vec3f& wi, float lambda_o) const {
     const Vec3f m = wo + wi;
     if (wo.z == 0 || wi.z == 0 || length_squared(m) == 0) return 0.f;
-    return D(normalize(m) * (m.z < 0 ? -1.f : 1.f)) * G(wo, wi) / std::abs(4 * wo.z * wi.z);
+    return D(normalize(m) * (m.z < 0 ? -1.f : 1.f)) * G(lambda_o, wi) / std::abs(4 * wo.z * wi.z);
   }
+  float Lambda(float mu) const { return mu < 0.5f ? std::exp(L(mu)) : std::exp(2 * L_half_ - L(1 - mu)); }
 
  private:
   // Estevez & Kulla's fit, its five parameters blended between α = 0 and α = 1 by (1 − α)².
-  float L(float mu) const {
-    const float t = sqr(1 - alpha_);
-    const float a = lerp(t, 21.5473f, 25.3245f), b = lerp(t, 3.82987f, 3.32435f), c = lerp(t, 0.19823f, 0.16801f),
-                d = lerp(t, -1.97760f, -1.27393f), e = lerp(t, -4.32054f, -4.85967f);
-    return a / (1 + b * std::pow(mu, c)) + d * mu + e;
-  }
-  float Lambda(float mu) const { return mu < 0.5f ? std::exp(L(mu)) : std::exp(2 * L(0.5f) - L(1 - mu)); }
+  struct Fit {
+    float a, b, c, d, e;
+    explicit Fit(float t)
+        : a(lerp(t, 21.5473f, 25.3245f)),
+          b(lerp(t, 3.82987f, 3.32435f)),
+          c(lerp(t, 0.19823f, 0.16801f)),
+          d(lerp(t, -1.97760f, -1.27393f)),
+          e(lerp(t, -4.32054f, -4.85967f)) {}
+  };
+  float L(float mu) const { return fit_.a / (1 + fit_.b * std::pow(mu, fit_.c)) + fit_.d * mu + fit_.e; }
 
   float alpha_;
+  Fit fit_;       // the fit's parameters at α_
+  float L_half_;  // L(½), where Λ is mirrored
 };
 
 template <int N>
@@ -58,7 +67,7 @@ class SheenBsdf {
   DeltaLobes<N> delta_lobes(const Vec3f&) const { return {}; }
 
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
-    return same_hemisphere(wo, wi) ? color_ * charlie_.value(wo, wi) : SampledSpectrum<N>(0.f);
+    return same_hemisphere(wo, wi) ? color_ * charlie_.value(wo, wi, lambda_o(wo)) : SampledSpectrum<N>(0.f);
   }
 
   float pdf(const Vec3f& wo, const Vec3f& wi) const {
@@ -74,8 +83,21 @@ class SheenBsdf {
   }
 
  private:
+  // Λ(μ_o), kept for the next evaluation from the same wo (a path evaluates the BSDF of one hit
+  // from one wo: towards its light samples and its BSDF sample).
+  float lambda_o(const Vec3f& wo) const {
+    const float mu = std::abs(wo.z);
+    if (mu != outgoing_.mu) outgoing_ = {mu, charlie_.Lambda(mu)};
+    return outgoing_.lambda;
+  }
+
   SampledSpectrum<N> color_;
   CharlieSheen charlie_;
+  struct Outgoing {
+    float mu = -1;  // none yet
+    float lambda;
+  };
+  mutable Outgoing outgoing_;  // a cache: safe because a Bsdf is built and used within one thread
 };
 
 }  // namespace prism

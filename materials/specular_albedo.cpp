@@ -1,5 +1,6 @@
 #include "materials/specular_albedo.h"
 
+#include <array>
 #include <limits>
 
 #include "materials/albedo_tables.h"
@@ -25,17 +26,37 @@ float reflection_at(const Point& p, float eta, bool compensated) {
   return (1 - h.t) * reflection(h.i, compensated).at(p) + h.t * reflection(h.i + 1, compensated).at(p);
 }
 
+// Each lane's value of a quantity known at the η nodes, node(h), interpolated to the lane's
+// index: the nodes between the lanes' lowest and highest are each found once, for all lanes.
+template <class Node>
+void across_lanes(std::span<const SpecularAlbedo::Index> eta, const Node& node, std::span<float> out) {
+  int lo = kEta, hi = 0;
+  for (const SpecularAlbedo::Index& x : eta) lo = std::min(lo, x.h), hi = std::max(hi, x.h);
+  std::array<float, kEta> e;  // at the nodes lo … hi + 1
+  for (int h = lo; h <= hi + 1; ++h) e[h] = node(h);
+  for (size_t i = 0; i < eta.size(); ++i) out[i] = (1 - eta[i].th) * e[eta[i].h] + eta[i].th * e[eta[i].h + 1];
+}
+
 }  // namespace
 
 SpecularAlbedo::Roughness SpecularAlbedo::roughness(float alpha) {
-  // The lobes of one material (metal, dielectric, the diffuse coupling) ask for the same α in a
-  // row at every hit; the last answer is kept per thread, as the cube root costs ~100 instructions.
-  thread_local Roughness last{std::numeric_limits<float>::quiet_NaN(), 0, 0.f};
-  if (alpha != last.alpha) {
-    const Lerp a = alpha_node(alpha);
-    last = {alpha, a.i, a.t};
-  }
-  return last;
+  // The lobes of a material (metal, dielectric, coat, the diffuse coupling) ask for the same few α
+  // at every hit, a path's hits alternating between materials; the last few answers are kept per
+  // thread, as the cube root costs ~100 instructions.
+  constexpr int kKept = 8;
+  thread_local std::array<Roughness, kKept> kept = [] {
+    std::array<Roughness, kKept> k;
+    k.fill({std::numeric_limits<float>::quiet_NaN(), 0, 0.f});
+    return k;
+  }();
+  thread_local int next = 0;
+  for (const Roughness& r : kept)
+    if (r.alpha == alpha) return r;
+  const Lerp a = alpha_node(alpha);
+  const Roughness r{alpha, a.i, a.t};
+  kept[next] = r;
+  next = (next + 1) % kKept;
+  return r;
 }
 
 SpecularAlbedo::Direction SpecularAlbedo::direction(float mu, const Roughness& r) {
@@ -49,19 +70,21 @@ const SpecularAlbedo& SpecularAlbedo::table() {
   return t;
 }
 
-void SpecularAlbedo::E(const Direction& d, std::span<const float> eta, bool compensated, std::span<float> out) const {
+void SpecularAlbedo::index(std::span<const float> eta, std::span<Index> out) {
+  for (size_t i = 0; i < eta.size(); ++i) {
+    const Lerp h = locate_eta(eta[i]);
+    out[i] = {eta[i], h.i, h.t};
+  }
+}
+
+void SpecularAlbedo::E(const Direction& d, std::span<const Index> eta, bool compensated, std::span<float> out) const {
   if (d.smooth) {
-    for (size_t i = 0; i < eta.size(); ++i) out[i] = fresnel_dielectric(d.mu, eta[i]);
+    for (size_t i = 0; i < eta.size(); ++i) out[i] = fresnel_dielectric(d.mu, eta[i].eta);
     return;
   }
   const Point p = point(d);
-  int cell = -1;
-  float e0 = 0, e1 = 0;  // E at the cell's two η nodes
-  for (size_t i = 0; i < eta.size(); ++i) {
-    const Lerp h = locate_eta(eta[i]);
-    if (h.i != cell) cell = h.i, e0 = reflection(h.i, compensated).at(p), e1 = reflection(h.i + 1, compensated).at(p);
-    out[i] = (1 - h.t) * e0 + h.t * e1;
-  }
+  across_lanes(
+      eta, [&](int h) { return reflection(h, compensated).at(p); }, out);
 }
 
 float SpecularAlbedo::E(float mu, const Roughness& r, float eta, bool compensated) const {
@@ -72,6 +95,13 @@ float SpecularAlbedo::average(const Roughness& r, float eta, bool compensated) c
   const Lerp h = locate_eta(eta);
   const Lerp a{r.a, r.ta};
   return (1 - h.t) * reflection(h.i, compensated).average(a) + h.t * reflection(h.i + 1, compensated).average(a);
+}
+
+void SpecularAlbedo::average(const Roughness& r, std::span<const Index> eta, bool compensated,
+                             std::span<float> out) const {
+  const Lerp a{r.a, r.ta};
+  across_lanes(
+      eta, [&](int h) { return reflection(h, compensated).average(a); }, out);
 }
 
 float SpecularAlbedo::interface(float mu, const Roughness& r, float eta) const {

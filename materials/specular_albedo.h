@@ -39,13 +39,23 @@ class SpecularAlbedo {
     float ta, tm;
   };
   static Direction direction(float mu, const Roughness& r);
+  // Where an index η falls on the tables' η axis: found once per lane by a lobe that looks up E
+  // for each lane's own index at several μ (the lanes' reflectance coupling, pbr_bsdf.h).
+  struct Index {
+    float eta;
+    int h;
+    float th;
+  };
+  static void index(std::span<const float> eta, std::span<Index> out);
 
   static const SpecularAlbedo& table();
-  // E at one direction for several indices (one per lane) at once: lanes whose η fall in the
-  // same cell of the η axis (neighbouring wavelengths, mostly) read its two tables once.
-  void E(const Direction& d, std::span<const float> eta, bool compensated, std::span<float> out) const;
+  // E at one direction for several indices (one per lane) at once: the tables of the η nodes
+  // the lanes fall between are each read once, then every lane interpolates its own.
+  void E(const Direction& d, std::span<const Index> eta, bool compensated, std::span<float> out) const;
   float E(float mu, const Roughness& r, float eta, bool compensated) const;
   float average(const Roughness& r, float eta, bool compensated) const;
+  // The averages for several indices (one per lane) at once, as E above.
+  void average(const Roughness& r, std::span<const Index> eta, bool compensated, std::span<float> out) const;
   float interface(float mu, const Roughness& r, float eta) const;
   float white(const Direction& d) const;
   float white(float mu, const Roughness& r) const;

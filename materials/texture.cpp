@@ -82,6 +82,12 @@ std::array<float, 4> Image::mean(bool srgb) const {
   return {float(sum[0] / n), float(sum[1] / n), float(sum[2] / n), float(sum[3] / n)};
 }
 
+bool Image::any_zero(int channel) const {
+  for (size_t i = size_t(channel); i < rgba_.size(); i += 4)
+    if (rgba_[i] == 0) return true;
+  return false;
+}
+
 Vec2f TextureTransform::apply(Vec2f uv) const {
   const float c = std::cos(rotation), s = std::sin(rotation);
   const Vec2f scaled(uv.x * scale.x, uv.y * scale.y);

@@ -23,6 +23,7 @@ class Image {
   int height() const { return height_; }
   const uint8_t* texel(int x, int y) const { return &rgba_[(size_t(y) * width_ + x) * 4]; }
   std::array<float, 4> mean(bool srgb) const;  // average texel, decoded
+  bool any_zero(int channel) const;            // whether some texel has 0 in channel (0-3)
 
  private:
   int width_, height_;

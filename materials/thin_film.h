@@ -126,7 +126,8 @@ inline float film_coupling_index(float n_film, float eta) {
 // (the bare base, phase 1, lies under it too). That envelope meets F(η_c) at normal incidence but
 // rises above it towards grazing, where no single index bounds it (n_f 1.8 over η 1.5: by 0.013 at
 // 81°). x = max over θ of the envelope − F(θ, η_c), taken on 256 angles.
-inline float film_reflectance_excess_exact(float n_film, float eta) {
+// (Not inlined: film_reflectance_excess, which falls back on it, is read per lane at every hit.)
+[[gnu::noinline]] inline float film_reflectance_excess_exact(float n_film, float eta) {
   const float eta_c = film_coupling_index(n_film, eta);
   const auto envelope = [](std::complex<float> r1, std::complex<float> r2) {
     const float a = std::abs(r1), b = std::abs(r2);

@@ -28,6 +28,23 @@ SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& s
   return c->f_L * (weight / light_pdf);
 }
 
+// An alpha BLEND surface (opacity alpha) is the surface beside a hole, as Cycles' transparent BSDF
+// mixed in by alpha. The path passes through (returns true) or stays with probabilities in
+// proportion to the two shares' throughputs at this BSDF sample, 1 − α and α w (w: the sample's
+// f cos / pdf, averaged over the lanes), and beta takes its share over that probability: unbiased
+// for any such split (w is drawn first, the choice given w), and beta changes little whichever way
+// the path goes, where choosing the surface with probability α followed a dark surface α of the
+// time (GlassVaseFlowers' BLEND vase: 5x Cycles' variance). Light is sampled only where the path
+// stays, so staying must stay possible: without a sample to follow (w ≤ 0: none, or one of no
+// weight) the split is α to 1 − α, as if w were 1.
+template <int N>
+bool pass_through(float alpha, float w, float u, SampledSpectrum<N>& beta) {
+  const float pass = (1 - alpha) / ((1 - alpha) + alpha * (w > 0 ? w : 1.f));
+  const bool passes = u < pass;
+  beta *= passes ? (1 - alpha) / pass : alpha / (1 - pass);
+  return passes;
+}
+
 }  // namespace
 
 template <int N, bool Media, bool Dispersion>
@@ -44,11 +61,14 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
   const PowerLightSampler& light_sampler = world.light_sampler();
   const PathSky<N> sky(world.environment(), lambda);
 
-  for (int depth = 0;; ++depth) {
-    sampler.start_bounce(depth);
+  // `vertex` counts every surface met, `depth` those the path scattered at (not passed through):
+  // each vertex has its own block of sampler dimensions, the depth limit counts bounces.
+  for (int depth = 0, vertex = 0;; ++vertex) {
+    sampler.start_bounce(vertex);
     ++(depth == 0 ? counters.primary : counters.secondary);
-    const auto si = world.intersect(ray);
+    const auto si = world.intersect(ray, true);
     if constexpr (Media) beta *= media.transmittance(si ? si->t : kInfinity, lambda);
+    const float alpha = si ? World::blend_opacity(*si) : 1.f;  // < 1: an alpha BLEND surface, partly a hole
 
     // Light reached without sampling it: full weight after a camera or specular vertex,
     // otherwise the MIS weight of BSDF sampling against light sampling (whose solid-angle pdf,
@@ -73,21 +93,42 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
       const int light = world.area_light(si->instance, si->prim);
       const auto& area = std::get<AreaLight>(world.lights()[light]);
       if (area.emits_towards(si->wo))
-        add_emitted(material.emitted(si->at, lambda), light, [&] { return area.pdf_solid_angle(si->t, ray.d); });
+        add_emitted(material.emitted(si->at, lambda) * alpha, light,
+                    [&] { return area.pdf_solid_angle(si->t, ray.d); });
     }
-    if (depth == options.max_depth) break;
+    // A fully clear BLEND texel is passed at once; past the last bounce, light beyond a BLEND
+    // surface still counts: seen with probability 1 − α.
+    const bool last = depth == options.max_depth;
+    if (alpha <= 0 || (last && alpha < 1 && sampler.get_1d() < 1 - alpha)) {
+      ray = World::beyond(*si, ray);
+      continue;
+    }
+    if (last) break;
 
     const bool entering = si->front_face();
     const Dielectric* front = Media ? media.front_dielectric(material, entering) : nullptr;
     const Frame frame = si->shading_frame();
     const Vec3f wo = frame.to_local(si->wo);
     const Vec3f reflect_axis = material.transmits() ? Vec3f(0.f, 0.f, 0.f) : wo.z < 0 ? -frame.z : frame.z;
-    // Light sampling, then the BSDF sample that continues the path, for either kind of BSDF.
+    // Light sampling, then the BSDF sample that continues the path, for either kind of BSDF; at a
+    // BLEND surface, light sampling only where the path stays (see pass_through).
+    bool passes = false;
+    const SampledSpectrum<N> path_pdfs_before = path_pdfs;  // a dispersive sample updates them
     const auto scatter = [&](const auto& bsdf) {
-      if (options.next_event && !bsdf_is_specular(bsdf))
-        L += beta * sample_direct(world, *si, frame, bsdf, wo, reflect_axis, lambda, sky, sampler, counters);
+      const auto direct = [&] {
+        if (options.next_event && !bsdf_is_specular(bsdf))
+          L += beta * sample_direct(world, *si, frame, bsdf, wo, reflect_axis, lambda, sky, sampler, counters);
+      };
+      if (alpha == 1) direct();
       const float uc = sampler.get_1d();
-      return bsdf_sample_f(bsdf, wo, uc, sampler.get_2d());
+      const auto b = bsdf_sample_f(bsdf, wo, uc, sampler.get_2d());
+      if (alpha < 1) {
+        const bool valid = b && b->pdf > 0.f && !wrong_side(*si, frame.to_world(b->wi), b->transmission);
+        passes = pass_through(alpha, valid ? (b->f * (abs_cos_theta(b->wi) / b->pdf)).average() : 0.f, sampler.get_1d(),
+                              beta);
+        if (!passes) direct();
+      }
+      return b;
     };
     const auto bs = [&] {
       if constexpr (Dispersion && N > 1)
@@ -95,6 +136,11 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
           return scatter(DispersiveBsdf<N>(material, si->at, lambda, front, path_pdfs));
       return scatter(make_bsdf(material, si->at, lambda, front));
     }();
+    if (passes) {
+      path_pdfs = path_pdfs_before;
+      ray = World::beyond(*si, ray);
+      continue;
+    }
     if (!bs || bs->pdf == 0.f) break;
     const Vec3f wi = frame.to_world(bs->wi);
     if (wrong_side(*si, wi, bs->transmission)) break;
@@ -115,6 +161,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
       beta /= 1.f - q;
     }
     if (beta.is_zero()) break;
+    ++depth;
   }
   return L;
 }

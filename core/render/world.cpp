@@ -1,5 +1,6 @@
 #include "render/world.h"
 
+#include <algorithm>
 #include <bit>
 
 #include "accel/triangle.h"
@@ -164,7 +165,7 @@ T interpolate(const std::vector<T>& values, const Mesh& m, uint32_t prim, const 
 
 }  // namespace
 
-SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const {
+SurfaceInteraction World::surface_point(const Ray& ray, const AccelHit& hit) const {
   const Instance& instance = scene_.instances[hit.instance];
   const Mesh& m = scene_.meshes[instance.mesh];
   const InstanceNormals& normals = instance_normals_[hit.instance];
@@ -184,7 +185,14 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
     if (!m.uv[set].empty()) si.at.uv[set] = interpolate(m.uv[set], m, hit.prim, b);
   if (!m.colors.empty()) si.at.vertex_color = interpolate(m.colors, m, hit.prim, b);
   if (const auto& spectra = spectra_[m.material]) si.at.spectra = &*spectra;
+  return si;
+}
 
+void World::shade(SurfaceInteraction& si, const AccelHit& hit) const {
+  const Instance& instance = scene_.instances[hit.instance];
+  const Mesh& m = scene_.meshes[instance.mesh];
+  const InstanceNormals& normals = instance_normals_[hit.instance];
+  const float b[3] = {hit.b0, hit.b1, hit.b2};
   if (!m.normals.empty()) {
     const Vec3f ns = transform_normal(normals.cofactor, interpolate(m.normals, m, hit.prim, b));
     const float len = length(ns);
@@ -195,7 +203,7 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
   const auto* pbr = std::get_if<PbrMaterial>(&material.kind);
   const bool anisotropic = pbr && pbr->anisotropic();
   const bool coat_map = pbr && pbr->clearcoat && pbr->clearcoat->normal_texture;
-  if (m.tangents.empty() || !(material.normal_texture || anisotropic || coat_map)) return si;
+  if (m.tangents.empty() || !(material.normal_texture || anisotropic || coat_map)) return;
   // The tangent frame (glTF §3.9.3): T, and B = sign · N × T, both ⊥ the normal n they turn about.
   const auto t4 = interpolate(m.tangents, m, hit.prim, b);
   const Vec3f t_world(instance.to_world.vector(Vec3d(t4[0], t4[1], t4[2])));
@@ -229,12 +237,12 @@ SurfaceInteraction World::interaction(const Ray& ray, const AccelHit& hit) const
   if (coat_map)
     if (const auto n = map_normal(*pbr->clearcoat->normal_texture, pbr->clearcoat->normal_scale))
       si.at.coat_normal = si.shading_frame().to_local(*n);  // in the frame the BSDF sees
-  return si;
+  return;
 }
 
-bool World::cut_away(const SurfaceInteraction& si, const Ray& ray) const {
+bool World::cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_blend) const {
   const Material& m = *si.material;
-  if (m.alpha_mode == AlphaMode::opaque) return false;
+  if (m.alpha_mode == AlphaMode::opaque || (keep_blend && m.alpha_mode == AlphaMode::blend)) return false;
   const float opacity = m.opacity(si.at);
   if (m.alpha_mode == AlphaMode::mask) return opacity < m.alpha_cutoff;
   const uint64_t h = hash_ints(std::bit_cast<uint32_t>(ray.o.x), std::bit_cast<uint32_t>(ray.o.y),
@@ -243,13 +251,21 @@ bool World::cut_away(const SurfaceInteraction& si, const Ray& ray) const {
   return float(h >> 40) * 0x1p-24f >= opacity;
 }
 
-std::optional<SurfaceInteraction> World::intersect(Ray ray) const {
+float World::blend_opacity(const SurfaceInteraction& si) {
+  const Material& m = *si.material;
+  if (m.alpha_mode != AlphaMode::blend) return 1.f;
+  const float a = m.opacity(si.at);
+  return a < 1 ? std::max(a, 0.f) : 1.f;  // a NaN (from a hostile vertex colour) is opaque, as cut_away has it
+}
+
+std::optional<SurfaceInteraction> World::intersect(Ray ray, bool keep_blend) const {
   float travelled = 0;
   for (;;) {
     AccelHit hit;
     if (!accel_.intersect(ray, hit)) return std::nullopt;
-    SurfaceInteraction si = interaction(ray, hit);
-    if (!features_.alpha || !cut_away(si, ray)) {
+    SurfaceInteraction si = surface_point(ray, hit);
+    if (!features_.alpha || !cut_away(si, ray, keep_blend)) {
+      shade(si, hit);
       si.t += travelled;
       return si;
     }
@@ -266,7 +282,7 @@ float World::transmittance(Ray ray) const {
   for (;;) {
     AccelHit hit;
     if (!accel_.intersect(ray, hit)) return T;
-    const SurfaceInteraction si = interaction(ray, hit);
+    const SurfaceInteraction si = surface_point(ray, hit);
     const Material& m = *si.material;
     if (m.alpha_mode == AlphaMode::opaque) return 0;
     const float opacity = m.opacity(si.at);
@@ -276,7 +292,6 @@ float World::transmittance(Ray ray) const {
   }
 }
 
-// The rest of `ray` past the surface it hit at si: the same line, from just beyond that surface.
 Ray World::beyond(const SurfaceInteraction& si, const Ray& ray) {
   const Vec3f o = offset_ray_origin(si.p, si.p_error, si.n, ray.d);
   return {o, ray.d, ray.tmax - length(o - ray.o)};

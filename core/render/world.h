@@ -24,8 +24,13 @@ class World {
   explicit World(const Scene& scene, const AccelOptions& accel = {});
 
   // The first surface along the ray that is not cut away by its material's alpha (glTF MASK
-  // and BLEND; BLEND decided stochastically by a hash of the ray, pbrt-v4 style).
-  std::optional<SurfaceInteraction> intersect(Ray ray) const;
+  // and BLEND; BLEND decided stochastically by a hash of the ray, pbrt-v4 style). With
+  // `keep_blend`, BLEND surfaces are returned whole: the caller weighs them by blend_opacity.
+  std::optional<SurfaceInteraction> intersect(Ray ray, bool keep_blend = false) const;
+  // The opacity alpha of a BLEND surface at si; 1 for any other.
+  static float blend_opacity(const SurfaceInteraction& si);
+  // The rest of `ray` past the surface it hit at si: the same line, from just beyond that surface.
+  static Ray beyond(const SurfaceInteraction& si, const Ray& ray);
   bool occluded(const Ray& ray) const { return features_.alpha ? intersect(ray).has_value() : accel_.occluded(ray); }
   // The fraction of light that gets through along `ray`: 0 if an opaque surface blocks it, else the
   // product of 1 − alpha of the BLEND surfaces it crosses (MASK cut-outs pass it whole). The
@@ -54,9 +59,11 @@ class World {
 
  private:
   std::array<Vec3f, 3> world_vertices(const Instance& inst, uint32_t prim) const;
-  SurfaceInteraction interaction(const Ray& ray, const AccelHit& hit) const;
-  bool cut_away(const SurfaceInteraction& si, const Ray& ray) const;
-  static Ray beyond(const SurfaceInteraction& si, const Ray& ray);
+  // A hit's point, geometric normal, material and texture coordinates (what alpha needs), then its
+  // shading normal and tangent (interpolated, normal-mapped): only for the surfaces not cut away.
+  SurfaceInteraction surface_point(const Ray& ray, const AccelHit& hit) const;
+  void shade(SurfaceInteraction& si, const AccelHit& hit) const;
+  bool cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_blend) const;
   void add_lights();
 
   const Scene& scene_;

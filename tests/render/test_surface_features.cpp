@@ -68,6 +68,98 @@ TEST_CASE("alpha BLEND lets the sky through in proportion to 1 - alpha") {
   test::check_mean(img, 0, 0, 16, 16, 0.7, 0.02);
 }
 
+TEST_CASE("alpha BLEND over a grey Lambertian: every sample carries the mean, past the last bounce too") {
+  // The path passes a BLEND surface or stays on it with probabilities in proportion to the two
+  // shares' throughputs at its BSDF sample: 1 − α = 0.7 and α f cos / pdf = 0.3 × 0.5. Under a
+  // uniform sky, with BSDF sampling alone, both ways then carry 0.7 + 0.3 × 0.5 = 0.85 of the sky:
+  // every pixel is 0.85 of the open sky's at 4 spp. (Choosing the surface with probability α
+  // gave each sample 1 or 0.5 of it by chance.) At max depth 0 the sheet is a hole 0.7 of the time.
+  PbrMaterial p = PbrMaterial::plastic(Rgb{0.5f, 0.5f, 0.5f}, 1);
+  p.specular = 0;  // pure Lambert: f cos / pdf = 0.5 for every cosine-weighted sample
+  p.alpha = 0.3f;
+  Material m{.name = "blend", .kind = p};
+  m.alpha_mode = AlphaMode::blend;
+  const auto render = [&](const Material& material, int max_depth) {
+    RenderOptions o;
+    o.spp = 4;
+    o.seed = 3;
+    o.path.max_depth = max_depth;
+    o.path.next_event = false;
+    o.progress = false;
+    return test::render_rgb(quad_before_sky(material), kCamera, 12, 12, o);
+  };
+  Material hole = m;
+  hole.alpha_mode = AlphaMode::mask;  // alpha 0.3 < cutoff 0.5: cut away everywhere, the sky alone
+  const auto sky = render(hole, 4), sheet = render(m, 4);
+  CHECK(sheet.stats.invalid_samples == 0);
+  for (size_t i = 0; i < sky.rgb.size(); ++i) {
+    INFO("value " << i << ": " << sheet.rgb[i] << " through the sheet, " << sky.rgb[i] << " without");
+    REQUIRE(sky.rgb[i] > 0);
+    CHECK(sheet.rgb[i] == Approx(0.85 * sky.rgb[i]).epsilon(1e-4));
+  }
+  RenderOptions o;
+  o.spp = 1024;
+  o.path.max_depth = 0;
+  o.progress = false;
+  test::check_mean(test::render_rgb(quad_before_sky(m), kCamera, 8, 8, o), 0, 0, 8, 8, 0.7, 0.02);
+}
+
+TEST_CASE("alpha BLEND over a glossy surface is 1 - alpha of the sky plus alpha of the opaque surface") {
+  // Unbiasedness where the BSDF sample's weight varies (a rough specular plastic, its light sampled):
+  // the BLEND render's mean is 0.7 × the sky's (1) + 0.3 × the opaque surface's, from its own render.
+  PbrMaterial p = PbrMaterial::plastic(Rgb{0.2f, 0.5f, 0.8f}, 0.4f);
+  p.alpha = 0.3f;
+  Material m{.name = "glossy", .kind = p};
+  RenderOptions o;
+  o.spp = 64;
+  o.seed = 5;
+  o.progress = false;
+  const auto opaque = test::render_rgb(quad_before_sky(m), kCamera, 16, 16, o);
+  m.alpha_mode = AlphaMode::blend;
+  o.seed = 6;
+  const auto blend = test::render_rgb(quad_before_sky(m), kCamera, 16, 16, o);
+  CHECK(blend.stats.invalid_samples == 0);
+  for (int c = 0; c < 3; ++c) {
+    const double expected = 0.7 + 0.3 * opaque.mean(c, 0, 0, 16, 16);
+    const double error =
+        std::hypot(blend.standard_error(c, 0, 0, 16, 16), 0.3 * opaque.standard_error(c, 0, 0, 16, 16));
+    INFO("channel " << c << ": " << blend.mean(c, 0, 0, 16, 16) << " vs " << expected << " ± " << error);
+    CHECK(error < 0.004);
+    CHECK(blend.mean(c, 0, 0, 16, 16) == Approx(expected).margin(4 * error));
+  }
+}
+
+TEST_CASE("alpha BLEND keeps its share of light sampling where the BSDF sample fails") {
+  // A rough metal floor seen at a grazing angle, lit only by a sun (reached by light sampling
+  // alone) under a black sky: many of its BSDF samples leave below the surface. Whatever the
+  // sample, the BLEND floor must show alpha = 0.3 of the opaque floor's light (it showed 0.26 of
+  // it, 15 standard errors short, when a failed sample always passed through).
+  PbrMaterial p = PbrMaterial::metal_of(Rgb{0.9f, 0.9f, 0.9f}, 1);
+  p.alpha = 0.3f;
+  Material m{.name = "metal", .kind = p};
+  const auto render = [&](AlphaMode mode, uint64_t seed) {
+    Scene scene;
+    Material material = m;
+    material.alpha_mode = mode;
+    scene.materials.push_back(std::move(material));
+    test::add_mesh(scene, test::make_quad({-20, -20, 0}, {40, 0, 0}, {0, 40, 0}, 0));
+    scene.directional_lights.push_back({"sun", normalize(Vec3f(0, -1, -0.3f)), RgbIlluminantSpectrum(Rgb{1, 1, 1})});
+    RenderOptions o;
+    o.spp = 64;
+    o.seed = seed;
+    o.progress = false;
+    return test::render_rgb(scene, test::look_at({0, -3, 0.5f}, {0, 0, 0}, 10.f), 16, 16, o);
+  };
+  const auto opaque = render(AlphaMode::opaque, 7), blend = render(AlphaMode::blend, 8);
+  CHECK(blend.stats.invalid_samples == 0);
+  const double expected = 0.3 * opaque.mean(1, 0, 0, 16, 16);
+  const double error = std::hypot(blend.standard_error(1, 0, 0, 16, 16), 0.3 * opaque.standard_error(1, 0, 0, 16, 16));
+  INFO(blend.mean(1, 0, 0, 16, 16) << " vs " << expected << " ± " << error);
+  REQUIRE(expected > 0);
+  CHECK(error < 0.03 * expected);
+  CHECK(blend.mean(1, 0, 0, 16, 16) == Approx(expected).margin(4 * error));
+}
+
 TEST_CASE("light sampled through an alpha BLEND sheet arrives scaled by 1 - alpha, at every sample") {
   // A white Lambert floor lit by a point light through a black BLEND sheet of alpha 0.3, seen by a
   // camera under the sheet: only light sampling reaches a point light, and a shadow ray carries the

@@ -419,6 +419,28 @@ TEST_CASE("EXT_texture_webp images decode; KHR_texture_basisu falls back to the 
                     Catch::Contains("ktx2_only.gltf") && Catch::Contains("KTX2") && Catch::Contains("no fallback"));
 }
 
+TEST_CASE("KHR_materials_volume: a thickness texture is kept only if some texel's G is 0 (a thin wall there)") {
+  // The thickness serves only to mark thin walls (G = 0); a texture without such a texel marks none
+  // anywhere, and is dropped so that no hit looks it up.
+  const auto dir = test::temp_dir("gltf_thickness");
+  const auto load = [&](uint8_t green, const char* name) {
+    const uint8_t texels[16] = {9, 200, 9, 255, 9, 1, 9, 255, 9, green, 9, 255, 9, 50, 9, 255};
+    GltfBuilder b = textured_quad({{"source", 0}}, {{"image/webp", webp_2x2(texels)}});
+    b.doc["materials"][0] = {
+        {"pbrMetallicRoughness", {{"metallicFactor", 0}}},
+        {"extensions",
+         {{"KHR_materials_transmission", {{"transmissionFactor", 1}}},
+          {"KHR_materials_volume", {{"thicknessFactor", 1}, {"thicknessTexture", {{"index", 0}}}}}}}};
+    b.use("KHR_materials_transmission", false);
+    b.use("KHR_materials_volume", false);
+    b.use("EXT_texture_webp", false);
+    const Scene scene = load_gltf(b.write_gltf(dir / name));
+    return std::get<PbrMaterial>(scene.materials.at(0).kind).thickness_texture.has_value();
+  };
+  CHECK(load(0, "thin_in_a_corner.gltf"));
+  CHECK_FALSE(load(2, "thick_everywhere.gltf"));
+}
+
 namespace {
 
 // One triangle with material `material` (a JSON object), loaded.
