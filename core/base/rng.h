@@ -16,12 +16,17 @@ constexpr uint64_t mix_bits(uint64_t v) {
   return v;
 }
 
+// hash_ints(a..., b...) = hash_continue(hash_ints(a...), b...): a hash of a common prefix is
+// computed once and continued (the sampler's pixel, then each dimension).
+template <typename... Args>
+constexpr uint64_t hash_continue(uint64_t h, Args... args) {
+  ((h = mix_bits(h ^ (uint64_t(args) + 0x632be59bd9b4e019ull))), ...);
+  return h;
+}
 // Hash of any number of integers (order-sensitive).
 template <typename... Args>
 constexpr uint64_t hash_ints(Args... args) {
-  uint64_t h = 0x9e3779b97f4a7c15ull;
-  ((h = mix_bits(h ^ (uint64_t(args) + 0x632be59bd9b4e019ull))), ...);
-  return h;
+  return hash_continue(0x9e3779b97f4a7c15ull, args...);
 }
 
 // PCG32: 64-bit LCG state, 32-bit permuted output (O'Neill 2014, "PCG: A Family of Simple Fast

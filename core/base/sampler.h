@@ -45,31 +45,31 @@ constexpr uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) {
   return x;
 }
 
-// Owen scrambling of a base-2 fraction (as 32 bits), by hashing its reversed bits.
-constexpr uint32_t nested_uniform_scramble(uint32_t x, uint32_t seed) {
-  return reverse_bits(laine_karras_permutation(reverse_bits(x), seed));
-}
+// Owen scrambling of a base-2 fraction x (as 32 bits) is this hash of its reversed bits, reversed
+// back: reverse_bits(laine_karras_permutation(reverse_bits(x), seed)) (the nested uniform scramble).
 
 // Sobol's first two dimensions: the van der Corput sequence (dimension 0: i's bits reversed) and
 // the Pascal matrix mod 2 (dimension 1). Dimension 1 is the XOR of the direction numbers v_j (v_0 = 2^31, v_j+1 = v_j ^
-// v_j >> 1) of i's set bits; tabulated per byte of i, so four lookups replace a loop over 32 bits.
+// v_j >> 1) of i's set bits; tabulated per byte of i, so four lookups replace a loop over 32 bits. The table holds the
+// v_j with their bits reversed, as the nested scramble takes them, which saves that reversal per sample.
 struct Dimension1Table {
   uint32_t byte[4][256];
 };
-constexpr Dimension1Table make_dimension1_table() {
+constexpr Dimension1Table make_reversed_dimension1_table() {
   uint32_t v[32] = {1u << 31};
   for (int j = 1; j < 32; ++j) v[j] = v[j - 1] ^ (v[j - 1] >> 1);
   Dimension1Table t{};
   for (int k = 0; k < 4; ++k)
     for (uint32_t b = 0; b < 256; ++b)
       for (int j = 0; j < 8; ++j)
-        if (b >> j & 1) t.byte[k][b] ^= v[8 * k + j];
+        if (b >> j & 1) t.byte[k][b] ^= reverse_bits(v[8 * k + j]);
   return t;
 }
-inline constexpr Dimension1Table kDimension1 = make_dimension1_table();
-constexpr uint32_t dimension1(uint32_t i) {
-  return kDimension1.byte[0][i & 255] ^ kDimension1.byte[1][i >> 8 & 255] ^ kDimension1.byte[2][i >> 16 & 255] ^
-         kDimension1.byte[3][i >> 24];
+inline constexpr Dimension1Table kReversedDimension1 = make_reversed_dimension1_table();
+// reverse_bits(dimension 1 of i).
+constexpr uint32_t reversed_dimension1(uint32_t i) {
+  return kReversedDimension1.byte[0][i & 255] ^ kReversedDimension1.byte[1][i >> 8 & 255] ^
+         kReversedDimension1.byte[2][i >> 16 & 255] ^ kReversedDimension1.byte[3][i >> 24];
 }
 
 constexpr float to_unit(uint32_t x) { return float(x >> 8) * 0x1p-24f; }
@@ -82,6 +82,7 @@ class Sampler {
 
   void start_pixel_sample(Vec2i pixel, int64_t sample_index, int replicate = 0) {
     pixel_hash_ = replicate == 0 ? hash_ints(pixel.x, pixel.y, seed_) : hash_ints(pixel.x, pixel.y, seed_, replicate);
+    pixel_state_ = hash_ints(pixel_hash_);
     reversed_index_ = sobol::reverse_bits(uint32_t(sample_index));
     dimension_ = 0;
     if (kind_ == SamplerKind::independent) {
@@ -99,7 +100,7 @@ class Sampler {
 
   float get_1d() {
     if (kind_ == SamplerKind::independent) return rng_.uniform();
-    const uint64_t h = hash_ints(pixel_hash_, dimension_++);
+    const uint64_t h = dimension_hash();
     return sobol::to_unit(scrambled_dimension0(shuffled(h), uint32_t(h >> 32)));
   }
 
@@ -108,28 +109,34 @@ class Sampler {
       const float u = rng_.uniform();
       return {u, rng_.uniform()};
     }
-    const uint64_t h = hash_ints(pixel_hash_, dimension_++);
+    const uint64_t h = dimension_hash();
     const uint32_t i = shuffled(h), h2 = uint32_t(mix_bits(h));
-    return {sobol::to_unit(scrambled_dimension0(i, uint32_t(h >> 32))),
-            sobol::to_unit(sobol::nested_uniform_scramble(sobol::dimension1(i), h2))};
+    return {sobol::to_unit(scrambled_dimension0(i, uint32_t(h >> 32))), sobol::to_unit(scrambled_dimension1(i, h2))};
   }
 
  private:
+  // hash_ints(pixel_hash_, dimension) for the next dimension, its first round (the pixel's) done
+  // once per sample in start_pixel_sample.
+  uint64_t dimension_hash() { return hash_continue(pixel_state_, dimension_++); }
   // This dimension's own permutation of the pixel's sample indices (padding): the nested
   // scramble of the index, with its bit reversal done once per sample.
   uint32_t shuffled(uint64_t h) const {
     return sobol::reverse_bits(sobol::laine_karras_permutation(reversed_index_, uint32_t(h)));
   }
-  // Dimension 0, Owen-scrambled: nested_uniform_scramble(reverse_bits(i), seed), whose inner
+  // Dimension 0 of sample i, Owen-scrambled: the nested scramble of reverse_bits(i), whose inner
   // reversals cancel.
   static uint32_t scrambled_dimension0(uint32_t i, uint32_t seed) {
     return sobol::reverse_bits(sobol::laine_karras_permutation(i, seed));
+  }
+  // Dimension 1 of sample i, Owen-scrambled: the nested scramble, its inner reversal tabulated.
+  static uint32_t scrambled_dimension1(uint32_t i, uint32_t seed) {
+    return sobol::reverse_bits(sobol::laine_karras_permutation(sobol::reversed_dimension1(i), seed));
   }
 
   uint64_t seed_;
   SamplerKind kind_;
   Rng rng_;
-  uint64_t pixel_hash_ = 0;
+  uint64_t pixel_hash_ = 0, pixel_state_ = 0;
   uint32_t reversed_index_ = 0, dimension_ = 0;
 };
 

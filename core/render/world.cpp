@@ -18,8 +18,28 @@ Accel build_accel(const Scene& scene, const AccelOptions& options) {
   return Accel(meshes, scene.instances, options);
 }
 
+namespace {
+
+// The cofactor matrix of t's linear part: entry (i, j) is the 2x2 minor without row i and column j, signed.
+std::array<Vec3f, 3> cofactor(const AffineTransform& t) {
+  const auto& a = t.m;
+  std::array<Vec3f, 3> c;
+  for (int i = 0; i < 3; ++i) {
+    const int i0 = (i + 1) % 3, i1 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j0 = (j + 1) % 3, j1 = (j + 2) % 3;
+      c[i][j] = a[i0][j0] * a[i1][j1] - a[i0][j1] * a[i1][j0];
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
 World::World(const Scene& scene, const AccelOptions& accel)
     : scene_(scene), features_(analyze_features(scene)), accel_(build_accel(scene, accel)) {
+  for (const Instance& inst : scene.instances)
+    instance_normals_.push_back({inst.to_world.determinant() < 0, cofactor(inst.to_world)});
   add_lights();
   // The tables a render reads, loaded here rather than at the first hit inside the timed render.
   RgbToSpectrumTable::srgb();
@@ -64,7 +84,7 @@ void World::add_lights() {
     for (uint32_t p = 0; p < mesh.indices.size() / 3; ++p) {
       const auto v = world_vertices(inst, p);
       const float area = triangle_area(v[0], v[1], v[2]);
-      const Vec3f n = triangle_normal(v[0], v[1], v[2]) * (inst.to_world.determinant() < 0 ? -1.f : 1.f);
+      const Vec3f n = triangle_normal(v[0], v[1], v[2]) * (instance_normals_[i].mirrored ? -1.f : 1.f);
       std::array<Vec2f, 3> uv{};
       if (texture && !mesh.uv[texture->texcoord].empty())
         for (int k = 0; k < 3; ++k) uv[k] = mesh.uv[texture->texcoord][mesh.indices[3 * p + k]];
@@ -118,19 +138,13 @@ void World::add_lights() {
 
 namespace {
 
-// A normal under an instance's transform: the cofactor matrix of its linear part, which is the
-// inverse transpose times the determinant (the caller normalises it and turns it to the
-// geometric normal's side, which restores length and sign).
-Vec3f transform_normal(const AffineTransform& t, const Vec3f& n) {
-  const auto& a = t.m;
+// A normal under an instance's transform is its product with the cofactor matrix of the linear
+// part, which is the inverse transpose times the determinant (the caller normalises it and turns
+// it to the geometric normal's side, which restores length and sign).
+Vec3f transform_normal(const std::array<Vec3f, 3>& cofactor, const Vec3f& n) {
   Vec3f r(0, 0, 0);
-  for (int i = 0; i < 3; ++i) {
-    const int i0 = (i + 1) % 3, i1 = (i + 2) % 3;
-    for (int j = 0; j < 3; ++j) {
-      const int j0 = (j + 1) % 3, j1 = (j + 2) % 3;
-      r[i] += (a[i0][j0] * a[i1][j1] - a[i0][j1] * a[i1][j0]) * n[j];
-    }
-  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) r[i] += cofactor[i][j] * n[j];
   return r;
 }
 
@@ -154,13 +168,13 @@ T interpolate(const std::vector<T>& values, const Mesh& m, uint32_t prim, const 
 SurfaceInteraction World::surface_point(const Ray& ray, const AccelHit& hit) const {
   const Instance& instance = scene_.instances[hit.instance];
   const Mesh& m = scene_.meshes[instance.mesh];
-  const bool mirrored = instance.to_world.determinant() < 0;  // winding (and so the front side) flips
+  const InstanceNormals& normals = instance_normals_[hit.instance];
   const auto v = world_vertices(instance, hit.prim);
   const float b[3] = {hit.b0, hit.b1, hit.b2};
   SurfaceInteraction si;
   si.p = v[0] * b[0] + v[1] * b[1] + v[2] * b[2];
   si.p_error = (abs(v[0] * b[0]) + abs(v[1] * b[1]) + abs(v[2] * b[2])) * gamma(7);
-  si.n = triangle_normal(v[0], v[1], v[2]) * (mirrored ? -1.f : 1.f);
+  si.n = triangle_normal(v[0], v[1], v[2]) * (normals.mirrored ? -1.f : 1.f);
   si.ns = si.n;
   si.wo = -ray.d;
   si.t = hit.t;
@@ -177,10 +191,10 @@ SurfaceInteraction World::surface_point(const Ray& ray, const AccelHit& hit) con
 void World::shade(SurfaceInteraction& si, const AccelHit& hit) const {
   const Instance& instance = scene_.instances[hit.instance];
   const Mesh& m = scene_.meshes[instance.mesh];
-  const bool mirrored = instance.to_world.determinant() < 0;
+  const InstanceNormals& normals = instance_normals_[hit.instance];
   const float b[3] = {hit.b0, hit.b1, hit.b2};
   if (!m.normals.empty()) {
-    const Vec3f ns = transform_normal(instance.to_world, interpolate(m.normals, m, hit.prim, b));
+    const Vec3f ns = transform_normal(normals.cofactor, interpolate(m.normals, m, hit.prim, b));
     const float len = length(ns);
     // The shading normal is taken on the geometric normal's side; a zero one falls back to it.
     if (len > 0 && std::isfinite(len)) si.ns = face_forward(ns / len, si.n);
@@ -193,7 +207,7 @@ void World::shade(SurfaceInteraction& si, const AccelHit& hit) const {
   // The tangent frame (glTF §3.9.3): T, and B = sign · N × T, both ⊥ the normal n they turn about.
   const auto t4 = interpolate(m.tangents, m, hit.prim, b);
   const Vec3f t_world(instance.to_world.vector(Vec3d(t4[0], t4[1], t4[2])));
-  const float sign = (t4[3] < 0) != mirrored ? -1.f : 1.f;
+  const float sign = (t4[3] < 0) != normals.mirrored ? -1.f : 1.f;
   const auto tangent_about = [&](const Vec3f& n) -> std::optional<Vec3f> {
     const Vec3f t = t_world - n * dot(n, t_world);
     if (length_squared(t) == 0) return std::nullopt;

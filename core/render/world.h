@@ -71,6 +71,13 @@ class World {
   Accel accel_;
   std::vector<Light> lights_;
   std::vector<int> instance_light_base_;
+  // Per instance, what every hit on it needs of its transform: whether it mirrors (flipping the
+  // winding, and so the front side), and the cofactor matrix that carries normals.
+  struct InstanceNormals {
+    bool mirrored;
+    std::array<Vec3f, 3> cofactor;
+  };
+  std::vector<InstanceNormals> instance_normals_;
   int environment_light_ = -1;
   std::unique_ptr<const EnvironmentMap> environment_map_;
   std::unique_ptr<const Spectrum> environment_radiance_;  // the constant environment, tabulated per nm
