@@ -2,7 +2,8 @@
 // Russian roulette (Arvo & Kirk 1990): a path whose throughput, relative to where it started, has
 // fallen to t ends with probability q and otherwise is divided by 1 − q, so the estimate stays
 // unbiased. It continues with probability min(1, √t), as Cycles does: paths end later than with
-// min(1, t), for less roulette noise at little more time (measured in issue 10).
+// min(1, t), for less roulette noise at little more time (measured in issue 10). The path tracer
+// decides it where the path meets its next surface, never on a ray that leaves for the sky.
 
 #include <algorithm>
 #include <cmath>

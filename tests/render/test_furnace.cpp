@@ -46,6 +46,34 @@ TEST_CASE("furnace: inside a closed emitting sphere the radiance is Le / (1 - al
   test::check_mean(img, 0, 0, 32, 32, 1.0, 0.01);
 }
 
+TEST_CASE("Russian roulette never cuts short a ray that leaves for the sky") {
+  // A periscope of two grey mirrors under a uniform sky: every camera ray reflects off both and
+  // leaves upwards. Roulette is decided where a path meets its third surface, so these paths,
+  // whose throughput after two bounces (F² ≈ 0.25) would end one in two of them, all reach the sky:
+  // the image equals the one rendered without roulette, sample for sample.
+  Scene scene;
+  Material mirror{.name = "mirror", .kind = PbrMaterial::metal_of(Rgb{0.5f, 0.5f, 0.5f}, 0)};
+  scene.materials.push_back(std::move(mirror));
+  test::add_mesh(scene,
+                 test::make_quad({-0.5f, -1, 0.5f}, {1, 0, -1}, {0, 2, 0}, 0));  // faces (1, 0, 1): sends -z to +x
+  test::add_mesh(scene,
+                 test::make_quad({2.5f, -1, -0.5f}, {1, 0, 1}, {0, 2, 0}, 0));  // faces (-1, 0, 1): sends +x to +z
+  scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
+  RenderOptions o;
+  o.spp = 4;
+  o.progress = false;
+  const auto camera = test::look_at({0, 0, 2}, {0, 0, 0}, 8.f);
+  const auto with = test::render_rgb(scene, camera, 8, 8, o);
+  o.path.russian_roulette = false;
+  const auto without = test::render_rgb(scene, camera, 8, 8, o);
+  CHECK(with.stats.invalid_samples == 0);
+  for (size_t i = 0; i < with.rgb.size(); ++i) {
+    INFO("value " << i);
+    REQUIRE(without.rgb[i] > 0.1f);
+    CHECK(with.rgb[i] == without.rgb[i]);
+  }
+}
+
 TEST_CASE("images are identical whatever the thread count") {
   Scene scene;
   scene.materials.push_back(test::diffuse({0.7f, 0.4f, 0.2f}));
