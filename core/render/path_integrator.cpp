@@ -58,6 +58,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
   Vec3f reflect_axis_prev;    // where that vertex sampled the environment (see LightSampleContext)
   float eta_scale = 1.f;      // Π η² of the refractions so far: undoes radiance scaling for roulette
   bool roulette_due = false;  // a bounce since the last roulette, and past the first one
+  float travelled = 0;        // from the last scattering vertex to ray.o, over the BLEND surfaces passed
   MediumStack media;
   const PowerLightSampler& light_sampler = world.light_sampler();
   const PathSky<N> sky(world.environment(), lambda);
@@ -66,7 +67,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
   // each vertex has its own block of sampler dimensions, the depth limit counts bounces.
   for (int depth = 0, vertex = 0;; ++vertex) {
     sampler.start_bounce(vertex);
-    ++(depth == 0 ? counters.primary : counters.secondary);
+    ++(vertex == 0 ? counters.primary : counters.secondary);
     const auto si = world.intersect(ray, true);
     if constexpr (Media) beta *= media.transmittance(si ? si->t : kInfinity, lambda);
     const float alpha = si ? World::blend_opacity(*si) : 1.f;  // < 1: an alpha BLEND surface, partly a hole
@@ -90,18 +91,25 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
       break;
     }
     const Material& material = *si->material;
+    // Past a BLEND surface along the same line: light met beyond it is as far from the last
+    // scattering vertex as the two segments together (for area lights' solid-angle pdfs).
+    const auto pass_surface = [&] {
+      const Ray next = World::beyond(*si, ray);
+      travelled += length(next.o - ray.o);
+      ray = next;
+    };
     if (material.emission) {
       const int light = world.area_light(si->instance, si->prim);
       const auto& area = std::get<AreaLight>(world.lights()[light]);
       if (area.emits_towards(si->wo))
         add_emitted(material.emitted(si->at, lambda) * alpha, light,
-                    [&] { return area.pdf_solid_angle(si->t, ray.d); });
+                    [&] { return area.pdf_solid_angle(travelled + si->t, ray.d); });
     }
     // A fully clear BLEND texel is passed at once; past the last bounce, light beyond a BLEND
     // surface still counts: seen with probability 1 − α.
     const bool last = depth == options.max_depth;
     if (alpha <= 0 || (last && alpha < 1 && sampler.get_1d() < 1 - alpha)) {
-      ray = World::beyond(*si, ray);
+      pass_surface();
       continue;
     }
     if (last) break;
@@ -138,7 +146,12 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
         const bool valid = b && b->pdf > 0.f && !wrong_side(*si, frame.to_world(b->wi), b->transmission);
         passes = pass_through(alpha, valid ? (b->f * (abs_cos_theta(b->wi) / b->pdf)).average() : 0.f, sampler.get_1d(),
                               beta);
-        if (!passes) direct();
+        if (!passes) {  // light sampling's MIS weighs by the lanes' pdfs from before this sample
+          const SampledSpectrum<N> sampled = path_pdfs;
+          path_pdfs = path_pdfs_before;
+          direct();
+          path_pdfs = sampled;
+        }
       }
       return b;
     };
@@ -150,7 +163,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     }();
     if (passes) {
       path_pdfs = path_pdfs_before;
-      ray = World::beyond(*si, ray);
+      pass_surface();
       continue;
     }
     if (!bs || bs->pdf == 0.f) break;
@@ -161,6 +174,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     bsdf_pdf_prev = bs->pdf;
     reflect_axis_prev = reflect_axis;
     ray = si->spawn(wi);
+    travelled = 0;
     if (bs->transmission) {
       eta_scale *= sqr(bs->eta);
       if constexpr (Media) media.cross(material, entering);

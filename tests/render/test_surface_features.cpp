@@ -160,6 +160,51 @@ TEST_CASE("alpha BLEND keeps its share of light sampling where the BSDF sample f
   CHECK(blend.mean(1, 0, 0, 16, 16) == Approx(expected).margin(4 * error));
 }
 
+TEST_CASE("an area light seen through an alpha BLEND sheet: light sampling and BSDF sampling agree") {
+  // A white floor lit by a small emissive quad above a black BLEND sheet (alpha 0.3). A BSDF
+  // sample that passes the sheet and reaches the light is weighed by MIS against light sampling,
+  // whose solid-angle pdf depends on the distance from the floor: measured from the sheet instead,
+  // the weights summed to more than 1. With MIS the mean must equal BSDF sampling's alone.
+  const auto render = [](bool next_event, uint64_t seed) {
+    Scene scene;
+    PbrMaterial white = PbrMaterial::plastic(Rgb{1, 1, 1}, 1);
+    white.specular = 0;
+    scene.materials.push_back(Material{.name = "floor", .kind = white});
+    test::add_mesh(scene, test::make_quad({-2, -2, 0}, {4, 0, 0}, {0, 4, 0}, 0));
+    PbrMaterial p = black();
+    p.alpha = 0.3f;
+    Material sheet{.name = "sheet", .kind = p};
+    sheet.alpha_mode = AlphaMode::blend;
+    scene.materials.push_back(std::move(sheet));
+    test::add_mesh(scene, test::make_quad({-2, -2, 1}, {4, 0, 0}, {0, 4, 0}, 1));
+    Material lamp = test::diffuse({0, 0, 0}, "lamp");
+    lamp.emission = RgbIlluminantSpectrum(Rgb{4, 4, 4});
+    scene.materials.push_back(std::move(lamp));
+    test::add_mesh(scene, test::make_quad({-0.75f, 0.75f, 2}, {1.5f, 0, 0}, {0, -1.5f, 0}, 2));  // faces down
+    RenderOptions o;
+    o.spp = 1024;
+    o.seed = seed;
+    o.progress = false;
+    o.path.next_event = next_event;
+    return test::render_rgb(scene, test::look_at({0, 0, 0.5f}, {0, 0, 0}, 60.f), 8, 8, o);
+  };
+  const auto mis = render(true, 3), bsdf = render(false, 4);
+  CHECK(mis.stats.invalid_samples == 0);
+  // The mean of the pixels' differences (green), with its standard error: the image's own
+  // structure cancels pixel by pixel.
+  double sum = 0, sum2 = 0, mean_bsdf = 0;
+  const int n = 8 * 8;
+  for (int i = 0; i < n; ++i) {
+    const double d = mis.rgb[3 * i + 1] - bsdf.rgb[3 * i + 1];
+    sum += d, sum2 += d * d, mean_bsdf += bsdf.rgb[3 * i + 1] / n;
+  }
+  const double diff = sum / n, error = std::sqrt((sum2 / n - diff * diff) / (n - 1));
+  INFO("light sampling minus BSDF sampling alone: " << diff << " ± " << error << " of " << mean_bsdf);
+  REQUIRE(mean_bsdf > 0);
+  CHECK(error < 0.01 * mean_bsdf);
+  CHECK(std::abs(diff) < 4 * error);
+}
+
 TEST_CASE("light sampled through an alpha BLEND sheet arrives scaled by 1 - alpha, at every sample") {
   // A white Lambert floor lit by a point light through a black BLEND sheet of alpha 0.3, seen by a
   // camera under the sheet: only light sampling reaches a point light, and a shadow ray carries the
