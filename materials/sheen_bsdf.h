@@ -27,8 +27,7 @@ class CharlieSheen {
     const float sin2 = std::max(0.f, 1 - m.z * m.z);
     return (2 + 1 / alpha_) * std::pow(sin2, 0.5f / alpha_) / (2 * kPi);
   }
-  float G(const Vec3f& wo, const Vec3f& wi) const { return G(Lambda(std::abs(wo.z)), wi); }
-  // With Λ(μ_o) given (found once per wo).
+  // The height-correlated G(wo, wi), with Λ(μ_o) given (found once per wo).
   float G(float lambda_o, const Vec3f& wi) const { return 1 / (1 + lambda_o + Lambda(std::abs(wi.z))); }
   // f / C for directions on the same side.
   float value(const Vec3f& wo, const Vec3f& wi) const { return value(wo, wi, Lambda(std::abs(wo.z))); }

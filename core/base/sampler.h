@@ -46,7 +46,10 @@ constexpr uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) {
 }
 
 // Owen scrambling of a base-2 fraction x (as 32 bits) is this hash of its reversed bits, reversed
-// back: reverse_bits(laine_karras_permutation(reverse_bits(x), seed)) (the nested uniform scramble).
+// back (the nested uniform scramble); it takes x already reversed, which callers often have.
+inline uint32_t owen_scramble_reversed(uint32_t reversed_x, uint32_t seed) {
+  return reverse_bits(laine_karras_permutation(reversed_x, seed));
+}
 
 // Sobol's first two dimensions: the van der Corput sequence (dimension 0: i's bits reversed) and
 // the Pascal matrix mod 2 (dimension 1). Dimension 1 is the XOR of the direction numbers v_j (v_0 = 2^31, v_j+1 = v_j ^
@@ -81,12 +84,13 @@ class Sampler {
   explicit Sampler(uint64_t seed = 0, SamplerKind kind = SamplerKind::sobol) : seed_(seed), kind_(kind) {}
 
   void start_pixel_sample(Vec2i pixel, int64_t sample_index, int replicate = 0) {
-    pixel_hash_ = replicate == 0 ? hash_ints(pixel.x, pixel.y, seed_) : hash_ints(pixel.x, pixel.y, seed_, replicate);
-    pixel_state_ = hash_ints(pixel_hash_);
+    const uint64_t pixel_hash =
+        replicate == 0 ? hash_ints(pixel.x, pixel.y, seed_) : hash_ints(pixel.x, pixel.y, seed_, replicate);
+    pixel_state_ = hash_ints(pixel_hash);
     reversed_index_ = sobol::reverse_bits(uint32_t(sample_index));
     dimension_ = 0;
     if (kind_ == SamplerKind::independent) {
-      rng_.set_sequence(pixel_hash_, 0);
+      rng_.set_sequence(pixel_hash, 0);
       rng_.advance(uint64_t(sample_index) * 65536ull);
     }
   }
@@ -115,28 +119,24 @@ class Sampler {
   }
 
  private:
-  // hash_ints(pixel_hash_, dimension) for the next dimension, its first round (the pixel's) done
+  // hash_ints(pixel hash, dimension) for the next dimension, its first round (the pixel's) done
   // once per sample in start_pixel_sample.
   uint64_t dimension_hash() { return hash_continue(pixel_state_, dimension_++); }
   // This dimension's own permutation of the pixel's sample indices (padding): the nested
   // scramble of the index, with its bit reversal done once per sample.
-  uint32_t shuffled(uint64_t h) const {
-    return sobol::reverse_bits(sobol::laine_karras_permutation(reversed_index_, uint32_t(h)));
-  }
+  uint32_t shuffled(uint64_t h) const { return sobol::owen_scramble_reversed(reversed_index_, uint32_t(h)); }
   // Dimension 0 of sample i, Owen-scrambled: the nested scramble of reverse_bits(i), whose inner
   // reversals cancel.
-  static uint32_t scrambled_dimension0(uint32_t i, uint32_t seed) {
-    return sobol::reverse_bits(sobol::laine_karras_permutation(i, seed));
-  }
+  static uint32_t scrambled_dimension0(uint32_t i, uint32_t seed) { return sobol::owen_scramble_reversed(i, seed); }
   // Dimension 1 of sample i, Owen-scrambled: the nested scramble, its inner reversal tabulated.
   static uint32_t scrambled_dimension1(uint32_t i, uint32_t seed) {
-    return sobol::reverse_bits(sobol::laine_karras_permutation(sobol::reversed_dimension1(i), seed));
+    return sobol::owen_scramble_reversed(sobol::reversed_dimension1(i), seed);
   }
 
   uint64_t seed_;
   SamplerKind kind_;
   Rng rng_;
-  uint64_t pixel_hash_ = 0, pixel_state_ = 0;
+  uint64_t pixel_state_ = 0;
   uint32_t reversed_index_ = 0, dimension_ = 0;
 };
 

@@ -237,7 +237,6 @@ void World::shade(SurfaceInteraction& si, const AccelHit& hit) const {
   if (coat_map)
     if (const auto n = map_normal(*pbr->clearcoat->normal_texture, pbr->clearcoat->normal_scale))
       si.at.coat_normal = si.shading_frame().to_local(*n);  // in the frame the BSDF sees
-  return;
 }
 
 bool World::cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_blend) const {
