@@ -58,7 +58,9 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
   Vec3f reflect_axis_prev;    // where that vertex sampled the environment (see LightSampleContext)
   float eta_scale = 1.f;      // Π η² of the refractions so far: undoes radiance scaling for roulette
   bool roulette_due = false;  // a bounce since the last roulette, and past the first one
-  float travelled = 0;        // from the last scattering vertex to ray.o, over the BLEND surfaces passed
+  // From the last scattering vertex to ray.o, over the BLEND surfaces passed: light met beyond them
+  // is that much farther away (for area lights' solid-angle pdfs).
+  float travelled = 0;
   MediumStack media;
   const PowerLightSampler& light_sampler = world.light_sampler();
   const PathSky<N> sky(world.environment(), lambda);
@@ -91,13 +93,6 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
       break;
     }
     const Material& material = *si->material;
-    // Past a BLEND surface along the same line: light met beyond it is as far from the last
-    // scattering vertex as the two segments together (for area lights' solid-angle pdfs).
-    const auto pass_surface = [&] {
-      const Ray next = World::beyond(*si, ray);
-      travelled += length(next.o - ray.o);
-      ray = next;
-    };
     if (material.emission) {
       const int light = world.area_light(si->instance, si->prim);
       const auto& area = std::get<AreaLight>(world.lights()[light]);
@@ -109,7 +104,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     // surface still counts: seen with probability 1 − α.
     const bool last = depth == options.max_depth;
     if (alpha <= 0 || (last && alpha < 1 && sampler.get_1d() < 1 - alpha)) {
-      pass_surface();
+      travelled += World::step_beyond(*si, ray);
       continue;
     }
     if (last) break;
@@ -163,7 +158,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     }();
     if (passes) {
       path_pdfs = path_pdfs_before;
-      pass_surface();
+      travelled += World::step_beyond(*si, ray);
       continue;
     }
     if (!bs || bs->pdf == 0.f) break;

@@ -268,9 +268,7 @@ std::optional<SurfaceInteraction> World::intersect(Ray ray, bool keep_blend) con
       si.t += travelled;
       return si;
     }
-    const Ray next = beyond(si, ray);
-    travelled += length(next.o - ray.o);
-    ray = next;
+    travelled += step_beyond(si, ray);
     if (!(ray.tmax > 0)) return std::nullopt;
   }
 }
@@ -286,14 +284,16 @@ float World::transmittance(Ray ray) const {
     if (m.alpha_mode == AlphaMode::opaque) return 0;
     const float opacity = m.opacity(si.at);
     if (m.alpha_mode == AlphaMode::mask ? opacity >= m.alpha_cutoff : (T *= 1 - opacity) <= 0) return 0;
-    ray = beyond(si, ray);
+    step_beyond(si, ray);
     if (!(ray.tmax > 0)) return T;
   }
 }
 
-Ray World::beyond(const SurfaceInteraction& si, const Ray& ray) {
+float World::step_beyond(const SurfaceInteraction& si, Ray& ray) {
   const Vec3f o = offset_ray_origin(si.p, si.p_error, si.n, ray.d);
-  return {o, ray.d, ray.tmax - length(o - ray.o)};
+  const float step = length(o - ray.o);
+  ray = {o, ray.d, ray.tmax - step};
+  return step;
 }
 
 }  // namespace prism

@@ -29,8 +29,9 @@ class World {
   std::optional<SurfaceInteraction> intersect(Ray ray, bool keep_blend = false) const;
   // The opacity alpha of a BLEND surface at si; 1 for any other.
   static float blend_opacity(const SurfaceInteraction& si);
-  // The rest of `ray` past the surface it hit at si: the same line, from just beyond that surface.
-  static Ray beyond(const SurfaceInteraction& si, const Ray& ray);
+  // Moves `ray` on past the surface it hit at si (the same line, from just beyond that surface);
+  // returns how far its origin moved.
+  static float step_beyond(const SurfaceInteraction& si, Ray& ray);
   bool occluded(const Ray& ray) const { return features_.alpha ? intersect(ray).has_value() : accel_.occluded(ray); }
   // The fraction of light that gets through along `ray`: 0 if an opaque surface blocks it, else the
   // product of 1 − alpha of the BLEND surfaces it crosses (MASK cut-outs pass it whole). The
