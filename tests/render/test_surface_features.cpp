@@ -40,6 +40,26 @@ PbrMaterial black() {
 
 const CameraDesc kCamera = test::look_at({0, 0, 2}, {0, 0, 0}, 40.f);  // the quad fills the view
 
+// A white Lambert floor (z = 0, 4 m wide) and, with `sheet`, a black BLEND sheet of alpha 0.3 a
+// metre above it; no light yet. kUnderSheet looks down at the floor from between the two.
+Scene floor_under_sheet(bool sheet) {
+  Scene scene;
+  PbrMaterial white = PbrMaterial::plastic(Rgb{1, 1, 1}, 1);
+  white.specular = 0;
+  scene.materials.push_back(Material{.name = "floor", .kind = white});
+  test::add_mesh(scene, test::make_quad({-2, -2, 0}, {4, 0, 0}, {0, 4, 0}, 0));
+  if (sheet) {
+    PbrMaterial p = black();
+    p.alpha = 0.3f;
+    Material m{.name = "sheet", .kind = p};
+    m.alpha_mode = AlphaMode::blend;
+    scene.materials.push_back(std::move(m));
+    test::add_mesh(scene, test::make_quad({-2, -2, 1}, {4, 0, 0}, {0, 4, 0}, 1));
+  }
+  return scene;
+}
+const CameraDesc kUnderSheet = test::look_at({0, 0, 0.5f}, {0, 0, 0}, 60.f);
+
 }  // namespace
 
 TEST_CASE("alpha MASK cuts surfaces away where the texture's alpha is below the cutoff") {
@@ -161,22 +181,12 @@ TEST_CASE("alpha BLEND keeps its share of light sampling where the BSDF sample f
 }
 
 TEST_CASE("an area light seen through an alpha BLEND sheet: light sampling and BSDF sampling agree") {
-  // A white floor lit by a small emissive quad above a black BLEND sheet (alpha 0.3). A BSDF
+  // A white floor lit by an emissive quad above a black BLEND sheet (alpha 0.3). A BSDF
   // sample that passes the sheet and reaches the light is weighed by MIS against light sampling,
   // whose solid-angle pdf depends on the distance from the floor: measured from the sheet instead,
   // the weights summed to more than 1. With MIS the mean must equal BSDF sampling's alone.
   const auto render = [](bool next_event, uint64_t seed) {
-    Scene scene;
-    PbrMaterial white = PbrMaterial::plastic(Rgb{1, 1, 1}, 1);
-    white.specular = 0;
-    scene.materials.push_back(Material{.name = "floor", .kind = white});
-    test::add_mesh(scene, test::make_quad({-2, -2, 0}, {4, 0, 0}, {0, 4, 0}, 0));
-    PbrMaterial p = black();
-    p.alpha = 0.3f;
-    Material sheet{.name = "sheet", .kind = p};
-    sheet.alpha_mode = AlphaMode::blend;
-    scene.materials.push_back(std::move(sheet));
-    test::add_mesh(scene, test::make_quad({-2, -2, 1}, {4, 0, 0}, {0, 4, 0}, 1));
+    Scene scene = floor_under_sheet(true);
     Material lamp = test::diffuse({0, 0, 0}, "lamp");
     lamp.emission = RgbIlluminantSpectrum(Rgb{4, 4, 4});
     scene.materials.push_back(std::move(lamp));
@@ -186,7 +196,7 @@ TEST_CASE("an area light seen through an alpha BLEND sheet: light sampling and B
     o.seed = seed;
     o.progress = false;
     o.path.next_event = next_event;
-    return test::render_rgb(scene, test::look_at({0, 0, 0.5f}, {0, 0, 0}, 60.f), 8, 8, o);
+    return test::render_rgb(scene, kUnderSheet, 8, 8, o);
   };
   const auto mis = render(true, 3), bsdf = render(false, 4);
   CHECK(mis.stats.invalid_samples == 0);
@@ -211,21 +221,9 @@ TEST_CASE("light sampled through an alpha BLEND sheet arrives scaled by 1 - alph
   // sheet's transmittance, so every pixel is 0.7 of the floor's without the sheet, not 0 or 1 of it
   // by chance. (Paths that bounce up meet the black sheet or the black sky: nothing more.)
   const auto render = [](bool sheet) {
-    Scene scene;
-    PbrMaterial white = PbrMaterial::plastic(Rgb{1, 1, 1}, 1);
-    white.specular = 0;
-    scene.materials.push_back(Material{.name = "floor", .kind = white});
-    test::add_mesh(scene, test::make_quad({-2, -2, 0}, {4, 0, 0}, {0, 4, 0}, 0));
-    if (sheet) {
-      PbrMaterial p = black();
-      p.alpha = 0.3f;
-      Material m{.name = "sheet", .kind = p};
-      m.alpha_mode = AlphaMode::blend;
-      scene.materials.push_back(std::move(m));
-      test::add_mesh(scene, test::make_quad({-2, -2, 1}, {4, 0, 0}, {0, 4, 0}, 1));
-    }
+    Scene scene = floor_under_sheet(sheet);
     scene.point_lights.push_back({"lamp", {0.2f, 0.1f, 2.f}, RgbIlluminantSpectrum(Rgb{1, 1, 1})});
-    return test::render_rgb(scene, test::look_at({0, 0, 0.5f}, {0, 0, 0}, 60.f), 12, 12, 4);
+    return test::render_rgb(scene, kUnderSheet, 12, 12, 4);
   };
   const auto open = render(false), through = render(true);
   CHECK(through.stats.invalid_samples == 0);
