@@ -66,7 +66,6 @@ struct SurfaceInputs {
   float diffuse_transmission = 0;
   Rgb diffuse_transmission_color{1, 1, 1};
   float anisotropy = 0;  // KHR_materials_anisotropy's strength × texture B
-  bool operator==(const SurfaceInputs&) const = default;
 };
 
 // The KHR material extensions' layers of a PbrMaterial, each a factor with its textures.
@@ -212,23 +211,6 @@ inline float ior_with_scaled_f0(float eta, float c) {
 // visible sit close to it (edge tints 0.9-1 for Cu, Al, Ag, Au); the Fresnel formula stays exact.
 std::array<float, 2> metal_nk_from_reflectance(float r);
 
-// All that make_bsdf builds a layered BSDF from, besides the material's colours' spectra (which
-// follow from the inputs). A path keeps its wavelengths, and its consecutive hits often meet one
-// material at the same inputs (light bouncing inside a closed thin-walled shape that transmits
-// diffusely): each thread keeps the last layered BSDF it built, and returns it again for the same
-// LayeredInputs, bit for bit what building it gives, for a comparison of ~60 values instead of
-// ~3000 instructions of per-lane set-up. Values, not pointers: a later scene's material at the
-// same address cannot match by mistake.
-template <int N>
-struct LayeredInputs {
-  SurfaceInputs inputs;
-  std::array<float, N> lambda, n_front, n, k;  // the wavelengths, the front medium's index, the metal's
-  float eta, film_ior;  // the dielectric's relative index at the hero wavelength; the film's index
-  bool compensated;
-  Vec3f coat_normal;
-  bool operator==(const LayeredInputs&) const = default;
-};
-
 // The BSDF of material m for the path's wavelengths. `front` is the dielectric on the front
 // (normal) side of the surface, or nullptr for vacuum. Where the index ratio varies with λ, every
 // lane refracts at the hero's (lane 0's) index, so only lane 0 is right: the path tracer takes
@@ -287,22 +269,11 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
 
   // The extensions: a thin film over the metal and the dielectric, a specular colour, diffuse
   // transmission, under a clear coat and a sheen.
-  const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
-  const auto lanes_of = [](const auto& x) {
-    std::array<float, N> r;
-    for (int i = 0; i < N; ++i) r[i] = x[i];
-    return r;
-  };
-  const LayeredInputs<N> key{
-      p,  lanes_of(lambda), lanes_of(n_front), lanes_of(n), lanes_of(k), eta, film ? material.iridescence->ior : 0.f,
-      ms, at.coat_normal};
-  thread_local std::optional<std::pair<LayeredInputs<N>, LayeredBsdf<N>>> last;
-  if (last && last->first == key) return last->second;
-
   std::optional<FilmLanes<N>> film_lanes;
   if (film)
     film_lanes.emplace(ThinFilm{p.iridescence, p.iridescence_thickness, material.iridescence->ior}, lambda, n_front);
   const ConductorBsdf<N, true> metal(distribution, n, k, ms, p.metallic > 0 ? film_lanes : std::nullopt);
+  const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
   // Per-lane reflectance: the specular colour's indices, the film; and for the diffuse under
   // them, each lane's index (with a film, the one of the film's highest reflectance).
   std::optional<SpectralReflectance<N>> lanes;
@@ -339,8 +310,7 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
   if (p.clearcoat > 0) coat = {p.clearcoat, sqr(p.clearcoat_roughness), 1.5f / n_front[0], at.coat_normal, ms};
   std::optional<typename LayeredBsdf<N>::Sheen> sheen;
   if (p.sheen_color.max() > 0) sheen = {sampled(constant.sheen_color, p.sheen_color), sqr(p.sheen_roughness)};
-  last.emplace(key, LayeredBsdf<N>(pbr, coat, sheen));
-  return last->second;
+  return LayeredBsdf<N>(pbr, coat, sheen);
 }
 
 // make_bsdf for integrators that follow only the hero wavelength past a λ-dependent index ratio:
