@@ -90,7 +90,7 @@ class BruteForce {
     Reference best;
     best.h.t = ray.tmax;
     for (const TriangleBlock& block : blocks_) {
-      const BlockHits hits = intersect_triangles(wr, block, best.h.t);
+      const BlockHits<simd::f4> hits = intersect_triangles<simd::f4>(wr, &block, best.h.t);
       for (int lane = 0; lane < kLanes; ++lane) {
         const uint32_t p = block.id[lane];
         const bool closer = hits.t[lane] < best.h.t || (best.hit && hits.t[lane] == best.h.t && p < best.prim);
@@ -221,6 +221,42 @@ TEST_CASE("closest hit and any hit equal brute force on random rays") {
     hits += accel.intersect(ray, h);
   }
   CHECK(hits > 2000);  // the test exercises hits, not only misses
+}
+
+TEST_CASE("leaves of 1 to 12 triangles (a block, a pair of blocks and an odd one) equal brute force") {
+  // n overlapping triangles in one cluster are a single leaf; 64 such clusters far apart are a
+  // leaf each. Rays aimed into the clusters hit several triangles of a leaf, in either half of a
+  // pair of blocks and in an odd last block.
+  Rng rng(21, 0);
+  for (int n = 1; n <= 12; ++n) {
+    for (const int clusters : {1, 64}) {
+      INFO(n << " triangles in each of " << clusters << " clusters");
+      Soup soup;
+      std::vector<Vec3f> centres;
+      for (int c = 0; c < clusters; ++c) {
+        const Vec3f centre(float(c % 4) * 10, float(c / 4 % 4) * 10, float(c / 16) * 10);
+        centres.push_back(centre);
+        for (int i = 0; i < n; ++i)
+          soup.add(centre + random_in(rng, -1, 1), centre + random_in(rng, -1, 1), centre + random_in(rng, -1, 1));
+      }
+      const TestScene scene = single(soup);
+      const Accel accel = scene.build();
+      if (clusters == 1 && n <= 8)  // one leaf, no node: ⌈n / 4⌉ blocks of four
+        CHECK(accel.memory_bytes() == size_t(n + 3) / 4 * sizeof(TriangleBlock) + 2 * sizeof(uint32_t));
+      const BruteForce brute_force(scene.world_triangles());
+      int hits = 0;
+      for (int i = 0; i < 400; ++i) {
+        const Vec3f target =
+            centres[size_t(rng.uniform() * float(clusters)) % centres.size()] + random_in(rng, -0.3f, 0.3f);
+        const Vec3f o = target + sample_uniform_sphere({rng.uniform(), rng.uniform()}) * 5.f;
+        const Ray ray{o, normalize(target - o), rng.uniform() < 0.2f ? 5.f : kInfinity};
+        require_exact(accel, brute_force, ray);
+        AccelHit h;
+        hits += accel.intersect(ray, h);
+      }
+      CHECK(hits > 40);
+    }
+  }
 }
 
 TEST_CASE("adversarial rays equal brute force, at ordinary, huge and tiny coordinates") {
