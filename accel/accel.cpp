@@ -117,40 +117,26 @@ struct Accel::Closest {
   TriangleHit hit{};
 };
 
-// The lanes that hit, in the order of (t, id), so that ties go the same way whatever the
-// traversal order.
-template <bool AnyHit, typename Lanes>
-[[gnu::always_inline]] inline bool Accel::test_lanes(const TriangleBlock* tri, uint32_t base, uint32_t instance,
-                                                     const WatertightRay& ray, Closest& closest) {
-  const BlockHits<Lanes> hits = intersect_triangles<Lanes>(ray, tri, closest.t);
-  bool found = false;
-  for (uint32_t m = hits.mask; m; m &= m - 1) {
-    const int lane = std::countr_zero(m);
-    const uint32_t id = base + lane_id(tri, lane);
-    if (hits.t[lane] < closest.t || (hits.t[lane] == closest.t && id < closest.id)) {
-      if constexpr (AnyHit) return true;
-      closest = {hits.t[lane], id, instance, hits.lane(lane)};
-      found = true;
-    }
-  }
-  return found;
-}
-
-// A leaf's blocks two at a time, eight lanes wide, and an odd last one four wide.
 template <bool AnyHit>
 [[gnu::always_inline]] inline bool Accel::test_blocks(const TriangleTree& tree, uint32_t first, uint32_t count,
                                                       uint32_t instance, const WatertightRay& ray,
                                                       Closest& closest) const {
   const uint32_t base = instance == kWorld ? 0 : first_prim_[instance];
-  const TriangleBlock* tri = tree.blocks.data() + first;
-  const TriangleBlock* end = tri + count;
   bool found = false;
-  for (; end - tri >= 2; tri += 2) {
-    found |= test_lanes<AnyHit, simd::f8>(tri, base, instance, ray, closest);
-    if constexpr (AnyHit)
-      if (found) return true;
+  for (uint32_t b = first; b < first + count; ++b) {
+    const TriangleBlock& block = tree.blocks[b];
+    const BlockHits hits = intersect_triangles(ray, block, closest.t);
+    for (uint32_t m = hits.mask; m; m &= m - 1) {
+      const int lane = std::countr_zero(m);
+      const uint32_t id = base + block.id[lane];
+      // The order of (t, id) decides, so that ties go the same way whatever the traversal order.
+      if (hits.t[lane] < closest.t || (hits.t[lane] == closest.t && id < closest.id)) {
+        if constexpr (AnyHit) return true;
+        closest = {hits.t[lane], id, instance, hits.lane(lane)};
+        found = true;
+      }
+    }
   }
-  if (tri != end) found |= test_lanes<AnyHit, simd::f4>(tri, base, instance, ray, closest);
   return found;
 }
 
@@ -189,23 +175,12 @@ bool Accel::trace(const Ray& ray, Closest& closest) const {
   return world_.bvh.traverse<AnyHit>(ray, closest.t, world_.blocks.data(), leaf, enter);
 }
 
-uint32_t Accel::instance_of(uint32_t id) const {
-  // A binary search for the last first_prim_ ≤ id whose steps are selects, not branches (which
-  // instance a ray hits is as unpredictable as the ray).
-  const uint32_t* first = first_prim_.data();
-  for (size_t n = first_prim_.size(); n > 1;) {
-    const size_t half = n / 2;
-    first = first[half] <= id ? first + half : first;
-    n -= half;
-  }
-  return uint32_t(first - first_prim_.data());
-}
-
 bool Accel::intersect(const Ray& ray, AccelHit& hit) const {
   Closest closest{ray.tmax};
   if (!trace<false>(ray, closest)) return false;
   uint32_t instance = closest.instance;
-  if (instance == kWorld) instance = instance_of(closest.id);
+  if (instance == kWorld)
+    instance = uint32_t(std::upper_bound(first_prim_.begin(), first_prim_.end(), closest.id) - first_prim_.begin() - 1);
   const TriangleHit& h = closest.hit;
   hit = {h.t, h.b0, h.b1, h.b2, instance, closest.id - first_prim_[instance]};
   return true;

@@ -71,12 +71,8 @@ class Accel {
     size_t memory_bytes() const { return bvh.memory_bytes() + blocks.size() * sizeof(TriangleBlock); }
   };
   struct Closest;
-  uint32_t instance_of(uint32_t global_prim) const;  // the instance whose triangles include it
   template <bool AnyHit>
   bool trace(const Ray& ray, Closest& closest) const;
-  template <bool AnyHit, typename Lanes>
-  static bool test_lanes(const TriangleBlock* tri, uint32_t base, uint32_t instance, const WatertightRay& ray,
-                         Closest& closest);
   template <bool AnyHit>
   bool test_blocks(const TriangleTree& tree, uint32_t first, uint32_t count, uint32_t instance,
                    const WatertightRay& ray, Closest& closest) const;

@@ -6,7 +6,6 @@
 // Embree does (Wald et al. 2014). Leaves are runs of blocks of a fixed number of primitive slots,
 // so that a leaf's primitives can be tested together too. Traversal visits children nearest first.
 
-#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -172,8 +171,8 @@ bool Bvh::traverse(const Ray& r, float& tmax, const Block* blocks, Leaf&& leaf, 
           const uint32_t c = node.child[std::countr_zero(m)];
           if (!bvh_ref::is_leaf(c))
             prefetch(&nodes_[c], sizeof(BvhNode));
-          else if (!bvh_ref::is_solo(c))  // the blocks of its first test
-            prefetch(&blocks[bvh_ref::index(c)], std::min<uint32_t>(bvh_ref::block_count(c), 2) * sizeof(Block));
+          else if (!bvh_ref::is_solo(c))
+            prefetch(&blocks[bvh_ref::index(c)], sizeof(Block));
         }
         if constexpr (AnyHit) {  // any hit will do: no order, no distances to keep
           ref = node.child[i];

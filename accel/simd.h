@@ -22,23 +22,10 @@ inline f8 load(const float* p) { return *reinterpret_cast<const f8_unaligned*>(p
 inline void store(float* p, f8 v) { *reinterpret_cast<f8_unaligned*>(p) = v; }
 
 // x in every lane. (f8{} + x would cost an addition: 0 + x is not x when x is −0.)
-template <typename V = f8>
-V broadcast(float x) {
-  if constexpr (sizeof(V) == sizeof(f4))
-    return V{x, x, x, x};
-  else
-    return V{x, x, x, x, x, x, x, x};
-}
-
-// Four lanes then four more as one eight-lane vector (from memory: one load into the upper half).
-inline f8 join(f4 lo, f4 hi) { return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7); }
+inline f8 broadcast(float x) { return f8{x, x, x, x, x, x, x, x}; }
 
 // |x| lane by lane: the sign bit cleared (one AND, where x < 0 ? −x : x costs a compare and a blend).
-template <typename V>
-V abs(V x) {
-  using I = decltype(x < x);  // the integer vector of V's width
-  return V(I(x) & (I{} + 0x7FFFFFFF));
-}
+inline f8 abs(f8 x) { return f8(i8(x) & (i8{} + 0x7FFFFFFF)); }
 
 // The lane-wise minimum and maximum that ignore a NaN in their first argument: (p − o)/d is NaN
 // when a ray lies in a slab's plane, and such a slab must not limit the interval.
