@@ -167,6 +167,9 @@ struct Material {
   }
   // Opacity at a point: PbrMaterial alpha × texture × vertex colour; 1 when opaque.
   float opacity(const SurfacePoint& at) const;
+  // The share of an alpha BLEND surface that is there (it scatters and emits that much of its
+  // light; the rest is a hole), in [0, 1]; 1 unless BLEND.
+  float blend_opacity(const SurfacePoint& at) const;
 
   // Whether light can pass through the surface anywhere (transmission or diffuse transmission);
   // otherwise it only reflects, into the side the light comes from.
