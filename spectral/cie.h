@@ -38,15 +38,26 @@ Xyz to_xyz(const SampledSpectrum<N>& s, const SampledWavelengths<N>& lambda) {
   using Float4 = float __attribute__((vector_size(16)));
   const CieTables& t = cie();
   const int last = int(t.xyz_rows.size()) - 1;
+  // Each lane's weight S(λ)/p(λ), row and fraction first, all lanes at once (SIMD): a lane outside
+  // the rows or terminated (pdf 0) weighs 0. (Written so that the loop vectorises: no branches,
+  // & for &&, and the division done on every lane, its result dropped where it does not count.)
+  std::array<float, N> w, f;
+  std::array<int, N> row;
+  const float top = float(last);
+  for (int i = 0; i < N; ++i) {
+    const float u = lambda[i] - kLambdaMin, pdf = lambda.pdf()[i];
+    const bool inside = (u >= 0.f) & (u <= top) & (pdf != 0.f);
+    const float x = std::min(std::max(0.f, u), top);  // u where inside; NaN to 0
+    row[i] = std::min(int(x), last - 1);
+    f[i] = x - float(row[i]);
+    const float weight = s[i] / pdf;
+    w[i] = inside ? weight : 0.f;
+  }
+  // Then x̄, ȳ, z̄ linear between the 1-nm rows, one 4-float row pair per lane.
   Float4 sum{0, 0, 0, 0};
   for (int i = 0; i < N; ++i) {
-    // x̄, ȳ, z̄ linear between the 1-nm rows, 0 outside them; a terminated lane adds nothing.
-    const float u = lambda[i] - kLambdaMin, pdf = lambda.pdf()[i];
-    if (!(u >= 0.f) || u > float(last) || pdf == 0.f) continue;
-    const int j = std::min(int(u), last - 1);
-    const float f = u - float(j), w = s[i] / pdf;
-    const auto a = std::bit_cast<Float4>(t.xyz_rows[j]), b = std::bit_cast<Float4>(t.xyz_rows[j + 1]);
-    sum += w * ((1.f - f) * a + f * b);
+    const auto a = std::bit_cast<Float4>(t.xyz_rows[row[i]]), b = std::bit_cast<Float4>(t.xyz_rows[row[i] + 1]);
+    sum += w[i] * ((1.f - f[i]) * a + f[i] * b);
   }
   const float norm = 1.f / (N * t.y_integral);
   return {sum[0] * norm, sum[1] * norm, sum[2] * norm};
