@@ -95,12 +95,12 @@ VcmIteration<N> trace_iteration(const BdptScene& scene, const RenderOptions& opt
 }
 
 // The body of the render: sample s of a pixel, from the sampler's stream for (pixel, s, seed)
-// alone, through the camera and the radiance estimator to CIE XYZ.
+// alone (the sampler started at the pixel), through the camera and the radiance estimator to CIE XYZ.
 template <int N>
 CameraSample<N> camera_sample(const World& world, const Camera& camera, const RenderOptions& options,
                               RadianceFn<N> radiance, Splatting<N>& bdpt, Sampler& sampler, Vec2i pixel, int s,
-                              int replicate, RayCounters& rays) {
-  sampler.start_pixel_sample(pixel, s, replicate);
+                              RayCounters& rays) {
+  sampler.start_sample(s);
   const Vec2f jitter = sampler.get_2d();
   CameraSample<N> c{SampledWavelengths<N>::sample(sampler.get_2d()), {}, {}, {}};
   if (bdpt.lambda) c.lambda = *bdpt.lambda;
@@ -154,11 +154,12 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
       // Each sample index once, or in the pixels the error estimate replicates twice (error_estimate.h;
       // not in bidirectional renders, whose light paths must be one per sample index).
       const int replicates = !bdpt.scene && replicated_pixel({x, y}, options.seed) ? 2 : 1;
-      for (int64_t k = int64_t(options.sample_begin + film.samples(p)) * replicates; k < int64_t(end) * replicates;
-           ++k) {
+      const int64_t first = int64_t(options.sample_begin + film.samples(p)) * replicates;
+      for (int64_t k = first; k < int64_t(end) * replicates; ++k) {
         const int s = int(k / replicates), r = int(k % replicates);
+        if (replicates > 1 || k == first) sampler.start_pixel({x, y}, r);
         const CameraSample<N> c =
-            camera_sample<N>(world, camera, options, radiance, bdpt, sampler, {x, y}, s, r, stats.rays);
+            camera_sample<N>(world, camera, options, radiance, bdpt, sampler, {x, y}, s, stats.rays);
         FilmSample fs{c.xyz};
         if (first_hits) first_hit<N>(world, c.ray, c.lambda, fs);
         ++stats.samples;
