@@ -31,6 +31,11 @@ const CieTables& cie();
 // ∫ S {x̄,ȳ,z̄} dλ / ∫ȳ dλ by 1-nm sums over 360–830 nm.
 Xyz spectrum_to_xyz(const Spectrum& s);
 
+// The mean of to_xyz over the wavelengths a path samples, for a spectrum S: ∫ S {x̄,ȳ,z̄} dλ / ∫ȳ
+// with the tables linear between their 1-nm rows as to_xyz reads them, by Simpson's rule on each
+// nm (exact where S is linear there, as the CIE tables and D65 are).
+Xyz sampled_xyz_mean(const Spectrum& s);
+
 // Monte Carlo estimate of the same integral from one path's N wavelengths: the average over
 // lanes of S(λᵢ) x̄(λᵢ) / p(λᵢ), divided by ∫ȳ. Terminated lanes (pdf 0) contribute 0.
 template <int N>
