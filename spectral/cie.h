@@ -44,19 +44,18 @@ Xyz to_xyz(const SampledSpectrum<N>& s, const SampledWavelengths<N>& lambda) {
   const CieTables& t = cie();
   const int last = int(t.xyz_rows.size()) - 1;
   // Each lane's weight S(λ)/p(λ), row and fraction first, all lanes at once (SIMD): a lane outside
-  // the rows or terminated (pdf 0) weighs 0. (Written so that the loop vectorises: no branches,
-  // & for &&, and the division done on every lane, its result dropped where it does not count.)
+  // the rows or terminated (pdf 0) weighs 0·S. (Written so that the loop vectorises on AVX2 too: no
+  // branches or selects of a quotient, the division done on every lane, by at least 1e-30.)
   std::array<float, N> w, f;
   std::array<int, N> row;
   const float top = float(last);
   for (int i = 0; i < N; ++i) {
     const float u = lambda[i] - kLambdaMin, pdf = lambda.pdf()[i];
-    const bool inside = (u >= 0.f) & (u <= top) & (pdf != 0.f);
-    const float x = std::min(std::max(0.f, u), top);  // u where inside; NaN to 0
+    const float keep = (u >= 0.f) & (u <= top) & (pdf > 0.f) ? 1.f : 0.f;
+    const float x = std::min(std::max(0.f, u), top);  // u where kept; NaN to 0
     row[i] = std::min(int(x), last - 1);
     f[i] = x - float(row[i]);
-    const float weight = s[i] / pdf;
-    w[i] = inside ? weight : 0.f;
+    w[i] = keep * s[i] / std::max(pdf, 1e-30f);
   }
   // Then x̄, ȳ, z̄ linear between the 1-nm rows, one 4-float row pair per lane.
   Float4 sum{0, 0, 0, 0};
