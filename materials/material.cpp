@@ -147,6 +147,12 @@ float Material::opacity(const SurfacePoint& at) const {
   return p->base_color_texture ? a * p->base_color_texture->lookup(at.uv[p->base_color_texture->texcoord], true)[3] : a;
 }
 
+float Material::blend_opacity(const SurfacePoint& at) const {
+  if (alpha_mode != AlphaMode::blend) return 1.f;
+  const float a = opacity(at);
+  return a < 1 ? std::max(a, 0.f) : 1.f;  // a NaN (from a hostile vertex colour) is opaque, as World::cut_away has it
+}
+
 PbrMaterial PbrMaterial::glass(Dielectric d, float roughness) {
   PbrMaterial m;
   m.metallic = 0;

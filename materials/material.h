@@ -167,6 +167,9 @@ struct Material {
   }
   // Opacity at a point: PbrMaterial alpha × texture × vertex colour; 1 when opaque.
   float opacity(const SurfacePoint& at) const;
+  // The share of an alpha BLEND surface that is there (it scatters and emits that much of its
+  // light; the rest is a hole), in [0, 1]; 1 unless BLEND.
+  float blend_opacity(const SurfacePoint& at) const;
 
   // Whether light can pass through the surface anywhere (transmission or diffuse transmission);
   // otherwise it only reflects, into the side the light comes from.
@@ -224,10 +227,7 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
   const TrowbridgeReitz distribution(p.anisotropy > 0 ? lerp(sqr(p.anisotropy), alpha, 1.f) : alpha, alpha);
   // A colour at the path's wavelengths, from the material's spectrum if it has one, else upsampled here.
   const auto sampled = [&]<typename Upsampled>(const std::optional<Upsampled>& constant, Rgb rgb) {
-    const Upsampled spectrum = constant ? *constant : Upsampled(rgb);
-    SampledSpectrum<N> r;
-    for (int i = 0; i < N; ++i) r[i] = spectrum(lambda[i]);
-    return r;
+    return constant ? (*constant)(lambda) : Upsampled(rgb)(lambda);
   };
   static const ConstantSpectra none;
   const ConstantSpectra& constant = at.spectra ? *at.spectra : none;
@@ -235,10 +235,9 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
   const bool vertex_colored = at.vertex_color[0] != 1 || at.vertex_color[1] != 1 || at.vertex_color[2] != 1;
   const RgbAlbedoSpectrum base =
       constant.base_color && !vertex_colored ? *constant.base_color : RgbAlbedoSpectrum(p.base_color);
-  for (int i = 0; i < N; ++i) {
-    if (front) n_front[i] = ior(front->ior, lambda[i]);
-    if (p.metallic < 1 || !material.metal) color[i] = base(lambda[i]);
-  }
+  if (front)
+    for (int i = 0; i < N; ++i) n_front[i] = ior(front->ior, lambda[i]);
+  if (p.metallic < 1 || !material.metal) color = base(lambda);
 
   // The metal, relative to the surrounding medium.
   SampledSpectrum<N> n, k;

@@ -199,12 +199,17 @@ class PbrBsdf {
       const std::array<float, N>& lane_e_o = o.lane_e;  // each lane's E(μ) at its own index, before specular_
       std::array<float, N> lane_e_i;
       table.E(in, lanes.eta, compensated_, lane_e_i);
+      // 0 where E_avg ≥ 1: a factor 0 or 1 and a divisor chosen per lane in a loop of their own,
+      // so that the lanes' loop has no branch and runs on all lanes at once (SIMD).
+      std::array<float, N> divisor, kept;
+      for (int i = 0; i < N; ++i) {
+        const float rest = 1 - lanes.e_avg[i];
+        divisor[i] = rest > 0 ? rest : 1.f, kept[i] = rest > 0 ? 1.f : 0.f;
+      }
       SampledSpectrum<N> c;
       for (int i = 0; i < N; ++i)
-        c[i] = lanes.e_avg[i] < 1
-                   ? std::max(0.f, 1 - specular_ * (lane_e_o[i] + lanes.excess[i] * white_o)) *
-                         std::max(0.f, 1 - specular_ * (lane_e_i[i] + lanes.excess[i] * white_i)) / (1 - lanes.e_avg[i])
-                   : 0.f;
+        c[i] = std::max(0.f, 1 - specular_ * (lane_e_o[i] + lanes.excess[i] * white_o)) *
+               std::max(0.f, 1 - specular_ * (lane_e_i[i] + lanes.excess[i] * white_i)) / divisor[i] * kept[i];
       return c;
     }
   }

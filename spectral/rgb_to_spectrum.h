@@ -11,17 +11,29 @@
 #include <vector>
 
 #include "spectral/rgb.h"
+#include "spectral/wavelengths.h"
 
 namespace prism {
 
 struct RgbSigmoidPolynomial {
   float c0 = 0, c1 = 0, c2 = 0;  // polynomial in λ [nm]
 
-  static float sigmoid(float x) {
-    if (std::isinf(x)) return x > 0 ? 1.f : 0.f;
-    return 0.5f + x / (2.f * std::sqrt(1.f + x * x));
-  }
+  // s(x) of x clamped to ±10¹⁸, where it is exactly 1 or 0 in float (sqrt(x²) = |x| there): so
+  // ±∞ (a grey of 1 or 0) gives those limits without a branch, and x² never overflows.
+  static float clamp(float x) { return std::min(std::max(x, -1e18f), 1e18f); }
+  static float sigmoid_clamped(float x) { return 0.5f + x / (2.f * std::sqrt(1.f + x * x)); }
+  static float sigmoid(float x) { return sigmoid_clamped(clamp(x)); }
   float operator()(float lambda) const { return sigmoid((c0 * lambda + c1) * lambda + c2); }
+  // At a path's wavelengths, all lanes at once (SIMD), with the same roundings as one at a time.
+  // (Clamped in a loop of its own: fused, the compiler branches on the clamp, lane by lane.)
+  template <int N>
+  SampledSpectrum<N> operator()(const SampledWavelengths<N>& lambda) const {
+    std::array<float, N> x;
+    for (int i = 0; i < N; ++i) x[i] = clamp((c0 * lambda[i] + c1) * lambda[i] + c2);
+    SampledSpectrum<N> r;
+    for (int i = 0; i < N; ++i) r[i] = sigmoid_clamped(x[i]);
+    return r;
+  }
 };
 
 // The table, indexed by the largest RGB component l, a nonlinear grid over that component's

@@ -75,6 +75,10 @@ class BlackbodySpectrum {
 struct RgbAlbedoSpectrum {
   explicit RgbAlbedoSpectrum(Rgb rgb);  // each channel clamped to [0, 1]
   float operator()(float lambda) const { return rsp(lambda); }
+  template <int N>
+  SampledSpectrum<N> operator()(const SampledWavelengths<N>& lambda) const {
+    return rsp(lambda);
+  }
   RgbSigmoidPolynomial rsp;
 };
 
@@ -83,6 +87,10 @@ struct RgbAlbedoSpectrum {
 struct RgbUnboundedSpectrum {
   explicit RgbUnboundedSpectrum(Rgb rgb);
   float operator()(float lambda) const { return scale * rsp(lambda); }
+  template <int N>
+  SampledSpectrum<N> operator()(const SampledWavelengths<N>& lambda) const {
+    return scale * rsp(lambda);
+  }
   float scale = 0;
   RgbSigmoidPolynomial rsp;
 };
@@ -90,6 +98,12 @@ struct RgbUnboundedSpectrum {
 struct RgbIlluminantSpectrum {
   explicit RgbIlluminantSpectrum(Rgb rgb);
   float operator()(float lambda) const;
+  template <int N>
+  SampledSpectrum<N> operator()(const SampledWavelengths<N>& lambda) const {
+    SampledSpectrum<N> r = shape(lambda);
+    for (int i = 0; i < N; ++i) r[i] *= (*illuminant)(lambda[i]);
+    return r;
+  }
   RgbUnboundedSpectrum shape;
   const DenselySampledSpectrum* illuminant;  // D65 with luminance Y = 1
 };
@@ -100,7 +114,14 @@ struct RgbIlluminantSpectrum {
 // attenuationColor at attenuationDistance). Smooth and non-negative since T is; T ≥ 1e-30.
 struct RgbAbsorptionSpectrum {
   RgbAbsorptionSpectrum(Rgb transmittance, float distance);
-  float operator()(float lambda) const { return -std::log(std::max(transmittance(lambda), 1e-30f)) * inv_distance; }
+  float operator()(float lambda) const { return sigma_a(transmittance(lambda)); }
+  template <int N>
+  SampledSpectrum<N> operator()(const SampledWavelengths<N>& lambda) const {
+    SampledSpectrum<N> r = transmittance(lambda);
+    for (int i = 0; i < N; ++i) r[i] = sigma_a(r[i]);
+    return r;
+  }
+  float sigma_a(float t) const { return -std::log(std::max(t, 1e-30f)) * inv_distance; }
   RgbAlbedoSpectrum transmittance;
   float inv_distance;
 };
@@ -115,13 +136,18 @@ inline float evaluate(const Spectrum& s, float lambda) {
 // s at each nm of the visible range, linear in between: for spectra evaluated very often.
 DenselySampledSpectrum densely_sampled(const Spectrum& s);
 
+// s at a path's wavelengths: all lanes at once where the kind offers it (the RGB sigmoids).
 template <int N>
 SampledSpectrum<N> sample(const Spectrum& s, const SampledWavelengths<N>& lambda) {
   return std::visit(
       [&lambda](const auto& kind) {
-        SampledSpectrum<N> r;
-        for (int i = 0; i < N; ++i) r[i] = kind(lambda[i]);
-        return r;
+        if constexpr (requires { kind(lambda); }) {
+          return kind(lambda);
+        } else {
+          SampledSpectrum<N> r;
+          for (int i = 0; i < N; ++i) r[i] = kind(lambda[i]);
+          return r;
+        }
       },
       s);
 }

@@ -34,21 +34,23 @@ struct LightSample {
 };
 
 // One emissive triangle, emitting from its front side (or both) its material's radiance,
-// uniform or textured.
+// uniform or textured, times its alpha BLEND opacity (as a path that hits it counts it).
 struct AreaLight {
   Vec3f p0, p1, p2;
   Vec3f n;  // unit front normal
   float area;
   const Material* material;
-  std::array<Vec2f, 3> uv;  // vertex coordinates in the emission texture's set (if textured)
+  const Mesh* mesh;  // triangle `prim` of it, for the texture coordinates and vertex colour
+  uint32_t prim;
   bool two_sided;
 
   template <int N>
   SampledSpectrum<N> radiance(const Vec3f& b, const SampledWavelengths<N>& lambda) const {
-    SurfacePoint at;
-    if (material->emission_texture)
-      at.uv[material->emission_texture->texcoord] = uv[0] * b.x + uv[1] * b.y + uv[2] * b.z;
-    return material->emitted(at, lambda);
+    if (!material->emission_texture && material->alpha_mode != AlphaMode::blend)
+      return material->emitted(SurfacePoint{}, lambda);
+    const float bary[3] = {b.x, b.y, b.z};
+    const SurfacePoint at = mesh->attributes_at(prim, bary);
+    return material->emitted(at, lambda) * material->blend_opacity(at);
   }
 
   bool emits_towards(const Vec3f& w) const { return two_sided || dot(n, w) > 0; }

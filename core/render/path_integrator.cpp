@@ -73,7 +73,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     ++(vertex == 0 ? counters.primary : counters.secondary);
     const auto si = vertex == 0 && first ? *first : world.intersect(ray, true);
     if constexpr (Media) beta *= media.transmittance(si ? si->t : kInfinity, lambda);
-    const float alpha = si ? World::blend_opacity(*si) : 1.f;  // < 1: an alpha BLEND surface, partly a hole
+    const float alpha = si ? si->material->blend_opacity(si->at) : 1.f;  // < 1: an alpha BLEND surface, partly a hole
 
     // Light reached without sampling it: full weight after a camera or specular vertex,
     // otherwise the MIS weight of BSDF sampling against light sampling (whose solid-angle pdf,

@@ -85,10 +85,7 @@ void World::add_lights() {
       const auto v = world_vertices(inst, p);
       const float area = triangle_area(v[0], v[1], v[2]);
       const Vec3f n = triangle_normal(v[0], v[1], v[2]) * (instance_normals_[i].mirrored ? -1.f : 1.f);
-      std::array<Vec2f, 3> uv{};
-      if (texture && !mesh.uv[texture->texcoord].empty())
-        for (int k = 0; k < 3; ++k) uv[k] = mesh.uv[texture->texcoord][mesh.indices[3 * p + k]];
-      lights_.push_back(AreaLight{v[0], v[1], v[2], n, area, &material, uv, material.double_sided});
+      lights_.push_back(AreaLight{v[0], v[1], v[2], n, area, &material, &mesh, p, material.double_sided});
       // Φ = π · A · L for a one-sided Lambertian emitter; luminance stands in for L.
       powers.push_back(area > 0 ? kPi * area * *power_luminance * (material.double_sided ? 2.f : 1.f) : 0.f);
     }
@@ -148,21 +145,6 @@ Vec3f transform_normal(const std::array<Vec3f, 3>& cofactor, const Vec3f& n) {
   return r;
 }
 
-// Barycentric interpolation of a per-vertex attribute of triangle prim.
-template <typename T>
-T interpolate(const std::vector<T>& values, const Mesh& m, uint32_t prim, const float b[3]) {
-  T r{};
-  for (int k = 0; k < 3; ++k) {
-    const T& v = values[m.indices[3 * prim + k]];
-    if constexpr (std::is_same_v<T, std::array<float, 4>>) {
-      for (int c = 0; c < 4; ++c) r[c] += v[c] * b[k];
-    } else {
-      r = r + v * b[k];
-    }
-  }
-  return r;
-}
-
 }  // namespace
 
 SurfaceInteraction World::surface_point(const Ray& ray, const AccelHit& hit) const {
@@ -181,9 +163,7 @@ SurfaceInteraction World::surface_point(const Ray& ray, const AccelHit& hit) con
   si.material = &scene_.materials[m.material];
   si.instance = hit.instance;
   si.prim = hit.prim;
-  for (int set = 0; set < 2; ++set)
-    if (!m.uv[set].empty()) si.at.uv[set] = interpolate(m.uv[set], m, hit.prim, b);
-  if (!m.colors.empty()) si.at.vertex_color = interpolate(m.colors, m, hit.prim, b);
+  si.at = m.attributes_at(hit.prim, b);
   if (const auto& spectra = spectra_[m.material]) si.at.spectra = &*spectra;
   return si;
 }
@@ -194,7 +174,7 @@ void World::shade(SurfaceInteraction& si, const AccelHit& hit) const {
   const InstanceNormals& normals = instance_normals_[hit.instance];
   const float b[3] = {hit.b0, hit.b1, hit.b2};
   if (!m.normals.empty()) {
-    const Vec3f ns = transform_normal(normals.cofactor, interpolate(m.normals, m, hit.prim, b));
+    const Vec3f ns = transform_normal(normals.cofactor, m.interpolate(m.normals, hit.prim, b));
     const float len = length(ns);
     // The shading normal is taken on the geometric normal's side; a zero one falls back to it.
     if (len > 0 && std::isfinite(len)) si.ns = face_forward(ns / len, si.n);
@@ -205,7 +185,7 @@ void World::shade(SurfaceInteraction& si, const AccelHit& hit) const {
   const bool coat_map = pbr && pbr->clearcoat && pbr->clearcoat->normal_texture;
   if (m.tangents.empty() || !(material.normal_texture || anisotropic || coat_map)) return;
   // The tangent frame (glTF §3.9.3): T, and B = sign · N × T, both ⊥ the normal n they turn about.
-  const auto t4 = interpolate(m.tangents, m, hit.prim, b);
+  const auto t4 = m.interpolate(m.tangents, hit.prim, b);
   const Vec3f t_world(instance.to_world.vector(Vec3d(t4[0], t4[1], t4[2])));
   const float sign = (t4[3] < 0) != normals.mirrored ? -1.f : 1.f;
   const auto tangent_about = [&](const Vec3f& n) -> std::optional<Vec3f> {
@@ -248,13 +228,6 @@ bool World::cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_ble
                                std::bit_cast<uint32_t>(ray.o.z), std::bit_cast<uint32_t>(ray.d.x),
                                std::bit_cast<uint32_t>(ray.d.y), std::bit_cast<uint32_t>(ray.d.z), si.prim);
   return float(h >> 40) * 0x1p-24f >= opacity;
-}
-
-float World::blend_opacity(const SurfaceInteraction& si) {
-  const Material& m = *si.material;
-  if (m.alpha_mode != AlphaMode::blend) return 1.f;
-  const float a = m.opacity(si.at);
-  return a < 1 ? std::max(a, 0.f) : 1.f;  // a NaN (from a hostile vertex colour) is opaque, as cut_away has it
 }
 
 std::optional<SurfaceInteraction> World::intersect(Ray ray, bool keep_blend) const {

@@ -2,6 +2,14 @@
 
 namespace prism {
 
+SurfacePoint Mesh::attributes_at(uint32_t prim, const float b[3]) const {
+  SurfacePoint at;
+  for (int set = 0; set < 2; ++set)
+    if (!uv[set].empty()) at.uv[set] = interpolate(uv[set], prim, b);
+  if (!colors.empty()) at.vertex_color = interpolate(colors, prim, b);
+  return at;
+}
+
 Bounds3f Scene::world_bounds() const {
   std::vector<Bounds3f> mesh_bounds(meshes.size());
   for (size_t m = 0; m < meshes.size(); ++m)

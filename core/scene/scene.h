@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "base/bounds.h"
@@ -27,6 +28,23 @@ struct Mesh {
   std::vector<std::array<float, 4>> tangents;  // xyz and the bitangent's sign (TANGENT, or generated)
   std::vector<uint32_t> indices;
   uint32_t material = 0;
+
+  // Barycentric interpolation of a per-vertex attribute over triangle `prim`.
+  template <typename T>
+  T interpolate(const std::vector<T>& values, uint32_t prim, const float b[3]) const {
+    T r{};
+    for (int k = 0; k < 3; ++k) {
+      const T& v = values[indices[3 * prim + k]];
+      if constexpr (std::is_same_v<T, std::array<float, 4>>) {
+        for (int c = 0; c < 4; ++c) r[c] += v[c] * b[k];
+      } else {
+        r = r + v * b[k];
+      }
+    }
+    return r;
+  }
+  // What materials read at barycentrics b of triangle `prim`: texture coordinates, vertex colour.
+  SurfacePoint attributes_at(uint32_t prim, const float b[3]) const;
 };
 
 // Per-vertex tangents from the texture coordinates (Lengyel 2001, "Computing Tangent Space

@@ -62,6 +62,33 @@ Scene floor_under_sheet(bool sheet) {
 }
 const CameraDesc kUnderSheet = test::look_at({0, 0, 0.5f}, {0, 0, 0}, 60.f);
 
+// kUnderSheet's view of a lit scene at 1024 spp, 8×8, with light sampling (MIS) or BSDF sampling alone.
+test::TestRender render_lit(const Scene& scene, bool next_event, uint64_t seed) {
+  RenderOptions o;
+  o.spp = 1024;
+  o.seed = seed;
+  o.progress = false;
+  o.path.next_event = next_event;
+  return test::render_rgb(scene, kUnderSheet, 8, 8, o);
+}
+
+// Light sampling and BSDF sampling alone render the same mean: the mean of the pixels' differences
+// (green) is within 4 standard errors of 0, so the image's own structure cancels pixel by pixel.
+void check_same_mean(const test::TestRender& mis, const test::TestRender& bsdf) {
+  CHECK(mis.stats.invalid_samples == 0);
+  double sum = 0, sum2 = 0, mean_bsdf = 0;
+  const int n = int(bsdf.rgb.size() / 3);
+  for (int i = 0; i < n; ++i) {
+    const double d = mis.rgb[3 * i + 1] - bsdf.rgb[3 * i + 1];
+    sum += d, sum2 += d * d, mean_bsdf += bsdf.rgb[3 * i + 1] / n;
+  }
+  const double diff = sum / n, error = std::sqrt((sum2 / n - diff * diff) / (n - 1));
+  INFO("light sampling minus BSDF sampling alone: " << diff << " ± " << error << " of " << mean_bsdf);
+  REQUIRE(mean_bsdf > 0);
+  CHECK(error < 0.01 * mean_bsdf);
+  CHECK(std::abs(diff) < 4 * error);
+}
+
 }  // namespace
 
 TEST_CASE("alpha MASK cuts surfaces away where the texture's alpha is below the cutoff") {
@@ -214,28 +241,28 @@ TEST_CASE("an area light seen through an alpha BLEND sheet: light sampling and B
     lamp.emission = RgbIlluminantSpectrum(Rgb{4, 4, 4});
     scene.materials.push_back(std::move(lamp));
     test::add_mesh(scene, test::make_quad({-0.75f, 0.75f, 2}, {1.5f, 0, 0}, {0, -1.5f, 0}, 2));  // faces down
-    RenderOptions o;
-    o.spp = 1024;
-    o.seed = seed;
-    o.progress = false;
-    o.path.next_event = next_event;
-    return test::render_rgb(scene, kUnderSheet, 8, 8, o);
+    return render_lit(scene, next_event, seed);
   };
-  const auto mis = render(true, 3), bsdf = render(false, 4);
-  CHECK(mis.stats.invalid_samples == 0);
-  // The mean of the pixels' differences (green), with its standard error: the image's own
-  // structure cancels pixel by pixel.
-  double sum = 0, sum2 = 0, mean_bsdf = 0;
-  const int n = 8 * 8;
-  for (int i = 0; i < n; ++i) {
-    const double d = mis.rgb[3 * i + 1] - bsdf.rgb[3 * i + 1];
-    sum += d, sum2 += d * d, mean_bsdf += bsdf.rgb[3 * i + 1] / n;
-  }
-  const double diff = sum / n, error = std::sqrt((sum2 / n - diff * diff) / (n - 1));
-  INFO("light sampling minus BSDF sampling alone: " << diff << " ± " << error << " of " << mean_bsdf);
-  REQUIRE(mean_bsdf > 0);
-  CHECK(error < 0.01 * mean_bsdf);
-  CHECK(std::abs(diff) < 4 * error);
+  check_same_mean(render(true, 3), render(false, 4));
+}
+
+TEST_CASE("an emissive alpha BLEND surface emits alpha of its light, sampled or hit") {
+  // A white floor under an emissive quad that is an alpha BLEND surface, its alpha 0.6 × a vertex
+  // colour's 0.5: a path that hits it counts 0.3 of its radiance, so light sampling must too (it
+  // counted all of it, and light sampling's mean was above BSDF sampling's alone).
+  const auto render = [](bool next_event, uint64_t seed) {
+    Scene scene = floor_under_sheet(false);
+    PbrMaterial p = black();
+    p.alpha = 0.6f;
+    Material lamp{.name = "lamp", .kind = p};
+    lamp.alpha_mode = AlphaMode::blend;
+    lamp.emission = RgbIlluminantSpectrum(Rgb{4, 4, 4});
+    scene.materials.push_back(std::move(lamp));
+    test::add_mesh(scene, test::make_quad({-0.75f, 0.75f, 2}, {1.5f, 0, 0}, {0, -1.5f, 0}, 1));  // faces down
+    scene.meshes.back().colors.assign(4, {1, 1, 1, 0.5f});
+    return render_lit(scene, next_event, seed);
+  };
+  check_same_mean(render(true, 3), render(false, 4));
 }
 
 TEST_CASE("light sampled through an alpha BLEND sheet arrives scaled by 1 - alpha, at every sample") {
