@@ -58,15 +58,19 @@ class ConductorBsdf {
     return d;
   }
 
-  SampledSpectrum<N> f(Vec3f wo, Vec3f wi) const {
-    if (smooth_ || !same_hemisphere(wo, wi)) return SampledSpectrum<N>(0.f);
+  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const { return eval(wo, wi).f; }
+
+  // f and pdf with one half vector m and one D(m).
+  BsdfEval<N> eval(Vec3f wo, Vec3f wi) const {
+    if (smooth_ || !same_hemisphere(wo, wi)) return {SampledSpectrum<N>(0.f), 0.f};
     if (wo.z < 0) wo = -wo, wi = -wi;
     const Vec3f m = wo + wi;
-    if (wo.z == 0 || wi.z == 0 || length_squared(m) == 0) return SampledSpectrum<N>(0.f);
+    if (length_squared(m) == 0) return {SampledSpectrum<N>(0.f), 0.f};
     const Vec3f wm = normalize(m);
-    const SampledSpectrum<N> f =
-        reflectance(dot(wo, wm)) * (distribution_.D(wm) * distribution_.G(wo, wi) / (4 * wo.z * wi.z));
-    return compensate_ ? f * multiple_scattering(wo.z) : f;
+    const float D = distribution_.D(wm);
+    const SampledSpectrum<N> f = reflectance(dot(wo, wm)) * (D * distribution_.G(wo, wi) / (4 * wo.z * wi.z));
+    return {compensate_ ? f * multiple_scattering(wo.z) : f,
+            distribution_.D_visible(wo, wm, D) / (4 * abs_dot(wo, wm))};
   }
 
   // Visible-normal sampling: pdf(wi) = D_wo(m) / (4 |wo·m|).
@@ -89,9 +93,9 @@ class ConductorBsdf {
     const Vec3f wm = distribution_.sample_visible_normal(wo * sign, u) * sign;
     const Vec3f wi = reflect(wo, wm);
     if (!same_hemisphere(wo, wi)) return std::nullopt;
-    const float p = pdf(wo, wi);
-    if (!(p > 0)) return std::nullopt;
-    return BsdfSample<N>{f(wo, wi), wi, p, false, false, 1.f};
+    const BsdfEval<N> e = eval(wo, wi);
+    if (!(e.pdf > 0)) return std::nullopt;
+    return BsdfSample<N>{e.f, wi, e.pdf, false, false, 1.f};
   }
 
  private:

@@ -123,21 +123,21 @@ class DielectricBsdf {
 
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
     const auto h = half_vector(wo, wi);
-    return h ? f(wo, wi, *h, fresnel(dot(wo, h->wm))) : SampledSpectrum<N>(0.f);
+    return h ? f(wo, wi, *h, fresnel(dot(wo, h->wm)), distribution_.D(h->wm)) : SampledSpectrum<N>(0.f);
   }
 
   float pdf(const Vec3f& wo, const Vec3f& wi) const {
     const auto h = half_vector(wo, wi);
-    return h ? pdf(wo, wi, *h, selection(dot(wo, h->wm))) : 0.f;
+    return h ? pdf(wo, wi, *h, selection(dot(wo, h->wm)), distribution_.D(h->wm)) : 0.f;
   }
 
-  // f and pdf with one half vector and one Fresnel reflectance.
+  // f and pdf with one half vector, one Fresnel reflectance and one D.
   BsdfEval<N> eval(const Vec3f& wo, const Vec3f& wi) const {
     const auto h = half_vector(wo, wi);
     if (!h) return {SampledSpectrum<N>(0.f), 0.f};
-    const float c = dot(wo, h->wm);
+    const float c = dot(wo, h->wm), D = distribution_.D(h->wm);
     const SampledSpectrum<N> F = fresnel(c);
-    return {f(wo, wi, *h, F), pdf(wo, wi, *h, selection(c, F))};
+    return {f(wo, wi, *h, F, D), pdf(wo, wi, *h, selection(c, F), D)};
   }
 
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
@@ -176,17 +176,18 @@ class DielectricBsdf {
     float eta_p;
   };
 
-  // f at the half vector h with the Fresnel reflectance F there, compensated (see the header).
-  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, const SampledSpectrum<N>& F) const {
-    if (!compensate_) return single_scattering(wo, wi, h, F);
-    if (thin_ && transmission_ < 1 && h.reflection) return partly_clear_reflection(wo, wi, h, F);
+  // f at the half vector h with the Fresnel reflectance F and D there, compensated (see the header).
+  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, const SampledSpectrum<N>& F,
+                       float D) const {
+    if (!compensate_) return single_scattering(wo, wi, h, F, D);
+    if (thin_ && transmission_ < 1 && h.reflection) return partly_clear_reflection(wo, wi, h, F, D);
     if constexpr (Extensions)
       if (lanes_ && lanes_->eta) {  // each lane's reflectance follows its own index: so does its E
-        SampledSpectrum<N> f = single_scattering(wo, wi, h, F);
+        SampledSpectrum<N> f = single_scattering(wo, wi, h, F, D);
         for (int i = 0; i < N; ++i) f[i] /= single_scattering_albedo(wo.z, (*lanes_->eta)[i]);
         return f;
       }
-    return single_scattering(wo, wi, h, F) / single_scattering_albedo(wo.z, eta_);
+    return single_scattering(wo, wi, h, F, D) / single_scattering_albedo(wo.z, eta_);
   }
 
   // The selection share from the face's reflectance F at the same facet: without per-lane
@@ -197,11 +198,11 @@ class DielectricBsdf {
     return F[0];
   }
 
-  // pdf at the half vector h, with `face` the selection share there.
-  float pdf(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, float face) const {
+  // pdf at the half vector h, with `face` the selection share and D the distribution there.
+  float pdf(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, float face, float D) const {
     const auto [R, T] = shares(face);
     if (R + T <= 0) return 0.f;
-    const float Dv = distribution_.D_visible(wo, h.wm);
+    const float Dv = distribution_.D_visible(wo, h.wm, D);
     if (h.reflection) return Dv / (4 * abs_dot(wo, h.wm)) * R / (R + T);
     if (thin_) return Dv / (4 * abs_dot(wo, h.wm)) * T / (R + T);
     const float dwm_dwi = abs_dot(wi, h.wm) / sqr(dot(wi, h.wm) + dot(wo, h.wm) / h.eta_p);
@@ -223,8 +224,7 @@ class DielectricBsdf {
   }
 
   SampledSpectrum<N> single_scattering(const Vec3f& wo, const Vec3f& wi, const HalfVector& h,
-                                       const SampledSpectrum<N>& F) const {
-    const float D = distribution_.D(h.wm);
+                                       const SampledSpectrum<N>& F, float D) const {
     if (h.reflection) return reflected(F) * (D * distribution_.G(wo, wi) / std::abs(4 * wi.z * wo.z));
     const SampledSpectrum<N> T = tint_ * transmitted(F);
     if (thin_) {
@@ -241,10 +241,10 @@ class DielectricBsdf {
   // sheet's t R' as the thin wall's. (The whole divided by the thin wall's white E let a rough white
   // wall return 1.02 of the light at roughness 1, t = 0.25.)
   SampledSpectrum<N> partly_clear_reflection(const Vec3f& wo, const Vec3f& wi, const HalfVector& h,
-                                             const SampledSpectrum<N>& F) const {
+                                             const SampledSpectrum<N>& F, float D) const {
     const SpecularAlbedo& table = SpecularAlbedo::table();
     const float mu = std::abs(wo.z), sheet = transmission_ / table.white(mu, roughness_);
-    const float lobe = distribution_.D(h.wm) * distribution_.G(wo, wi) / std::abs(4 * wi.z * wo.z);
+    const float lobe = D * distribution_.G(wo, wi) / std::abs(4 * wi.z * wo.z);
     SampledSpectrum<N> f;
     for (int i = 0; i < N; ++i) {
       float eta = eta_;
