@@ -153,6 +153,11 @@ float Material::blend_opacity(const SurfacePoint& at) const {
   return a < 1 ? std::max(a, 0.f) : 1.f;  // a NaN (from a hostile vertex colour) is opaque, as World::cut_away has it
 }
 
+float Material::coverage(const SurfacePoint& at) const {
+  if (alpha_mode == AlphaMode::mask) return opacity(at) < alpha_cutoff ? 0.f : 1.f;
+  return blend_opacity(at);
+}
+
 PbrMaterial PbrMaterial::glass(Dielectric d, float roughness) {
   PbrMaterial m;
   m.metallic = 0;

@@ -170,6 +170,9 @@ struct Material {
   // The share of an alpha BLEND surface that is there (it scatters and emits that much of its
   // light; the rest is a hole), in [0, 1]; 1 unless BLEND.
   float blend_opacity(const SurfacePoint& at) const;
+  // The share of the surface that is there at a point, for any alpha mode: under MASK 1 or 0 (its
+  // opacity against the cutoff), under BLEND blend_opacity, 1 when opaque.
+  float coverage(const SurfacePoint& at) const;
 
   // Whether light can pass through the surface anywhere (transmission or diffuse transmission);
   // otherwise it only reflects, into the side the light comes from.

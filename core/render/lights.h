@@ -34,7 +34,8 @@ struct LightSample {
 };
 
 // One emissive triangle, emitting from its front side (or both) its material's radiance,
-// uniform or textured, times its alpha BLEND opacity (as a path that hits it counts it).
+// uniform or textured, where its alpha leaves it (Material::coverage: 0 where MASK cuts it away,
+// alpha of it under BLEND), as a path that hits it counts it.
 struct AreaLight {
   Vec3f p0, p1, p2;
   Vec3f n;  // unit front normal
@@ -46,11 +47,11 @@ struct AreaLight {
 
   template <int N>
   SampledSpectrum<N> radiance(const Vec3f& b, const SampledWavelengths<N>& lambda) const {
-    if (!material->emission_texture && material->alpha_mode != AlphaMode::blend)
+    if (!material->emission_texture && material->alpha_mode == AlphaMode::opaque)
       return material->emitted(SurfacePoint{}, lambda);
     const float bary[3] = {b.x, b.y, b.z};
     const SurfacePoint at = mesh->attributes_at(prim, bary);
-    return material->emitted(at, lambda) * material->blend_opacity(at);
+    return material->emitted(at, lambda) * material->coverage(at);
   }
 
   bool emits_towards(const Vec3f& w) const { return two_sided || dot(n, w) > 0; }

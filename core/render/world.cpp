@@ -79,6 +79,10 @@ void World::add_lights() {
         const auto mean = texture->image->mean(true);
         *power_luminance *= luminance({mean[0], mean[1], mean[2]});
       }
+      // A BLEND surface emits alpha of its light: its factor's share (texture and vertex colours
+      // left out; the power only steers light selection).
+      const auto* pbr = std::get_if<PbrMaterial>(&material.kind);
+      if (pbr && material.alpha_mode == AlphaMode::blend) *power_luminance *= std::clamp(pbr->alpha, 0.f, 1.f);
     }
     instance_light_base_[i] = int(lights_.size());
     for (uint32_t p = 0; p < mesh.indices.size() / 3; ++p) {
@@ -222,8 +226,8 @@ void World::shade(SurfaceInteraction& si, const AccelHit& hit) const {
 bool World::cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_blend) const {
   const Material& m = *si.material;
   if (m.alpha_mode == AlphaMode::opaque || (keep_blend && m.alpha_mode == AlphaMode::blend)) return false;
+  if (m.alpha_mode == AlphaMode::mask) return m.coverage(si.at) == 0;
   const float opacity = m.opacity(si.at);
-  if (m.alpha_mode == AlphaMode::mask) return opacity < m.alpha_cutoff;
   const uint64_t h = hash_ints(std::bit_cast<uint32_t>(ray.o.x), std::bit_cast<uint32_t>(ray.o.y),
                                std::bit_cast<uint32_t>(ray.o.z), std::bit_cast<uint32_t>(ray.d.x),
                                std::bit_cast<uint32_t>(ray.d.y), std::bit_cast<uint32_t>(ray.d.z), si.prim);
