@@ -58,13 +58,19 @@ class ConductorBsdf {
     return d;
   }
 
-  SampledSpectrum<N> f(Vec3f wo, Vec3f wi) const {
-    if (smooth_ || !same_hemisphere(wo, wi)) return SampledSpectrum<N>(0.f);
+  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const { return eval(wo, wi).f; }
+
+  // f and pdf with one half vector m, one D(m) and one Λ(wo).
+  BsdfEval<N> eval(Vec3f wo, Vec3f wi) const {
+    if (smooth_ || !same_hemisphere(wo, wi)) return {SampledSpectrum<N>(0.f), 0.f};
     if (wo.z < 0) wo = -wo, wi = -wi;
     const Vec3f m = wo + wi;
-    if (wo.z == 0 || wi.z == 0 || length_squared(m) == 0) return SampledSpectrum<N>(0.f);
+    if (length_squared(m) == 0) return {SampledSpectrum<N>(0.f), 0.f};
     const Vec3f wm = normalize(m);
-    return f(wo, wi, wm, distribution_.D(wm), distribution_.G(wo, wi));
+    const TrowbridgeReitz::Facet t = distribution_.facet(wo, wi, wm);
+    const SampledSpectrum<N> f = reflectance(dot(wo, wm)) * (t.D * t.G / (4 * wo.z * wi.z));
+    return {compensate_ ? f * multiple_scattering(wo.z) : f,
+            TrowbridgeReitz::D_visible(wo, wm, t) / (4 * abs_dot(wo, wm))};
   }
 
   // Visible-normal sampling: pdf(wi) = D_wo(m) / (4 |wo·m|).
@@ -75,17 +81,6 @@ class ConductorBsdf {
     if (length_squared(m) == 0) return 0.f;
     const Vec3f wm = normalize(m);
     return distribution_.D_visible(wo, wm) / (4 * abs_dot(wo, wm));
-  }
-
-  // f and pdf with one half vector, one D(m) and one Λ(wo).
-  BsdfEval<N> eval(Vec3f wo, Vec3f wi) const {
-    if (smooth_ || !same_hemisphere(wo, wi)) return {SampledSpectrum<N>(0.f), 0.f};
-    if (wo.z < 0) wo = -wo, wi = -wi;
-    const Vec3f m = wo + wi;
-    if (length_squared(m) == 0) return {SampledSpectrum<N>(0.f), 0.f};
-    const Vec3f wm = normalize(m);
-    const TrowbridgeReitz::Facet t = distribution_.facet(wo, wi, wm);
-    return {f(wo, wi, wm, t.D, t.G), TrowbridgeReitz::D_visible(wo, wm, t) / (4 * abs_dot(wo, wm))};
   }
 
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float, Vec2f u) const {
@@ -104,12 +99,6 @@ class ConductorBsdf {
   }
 
  private:
-  // f at the half vector wm (wo, wi above the surface), with D(wm) and G(wo, wi).
-  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi, const Vec3f& wm, float D, float G) const {
-    const SampledSpectrum<N> f = reflectance(dot(wo, wm)) * (D * G / (4 * wo.z * wi.z));
-    return compensate_ ? f * multiple_scattering(wo.z) : f;
-  }
-
   // 1 + F0 (1 − E(μ)) / E(μ), F0 = ((n − 1)² + k²) / ((n + 1)² + k²) the normal reflectance.
   SampledSpectrum<N> multiple_scattering(float mu) const {
     const float e = SpecularAlbedo::table().white(mu, roughness_);

@@ -21,9 +21,9 @@ struct Refraction {
   float eta_p;  // the η that applied: η, or 1/η when w was on the other side of n
 };
 
-// Snell's law in vector form (Hecht, "Optics", §4.3; pbrt-v4 §9.3.2): with cos θ_t from
-// sin²θ_t = sin²θ_i / η², w_t = −w/η + (cos θ_i/η − cos θ_t) n. Returns nothing on total
-// internal reflection (sin²θ_t ≥ 1).
+// Snell's law in vector form (Hecht, "Optics", §4.3; pbrt-v4 §9.3.2): with η cos θ_t = g,
+// g² = η² − 1 + cos²θ_i (sin²θ_t = sin²θ_i / η²), w_t = −w/η + (cos θ_i − g)/η n. Returns nothing
+// on total internal reflection (g² ≤ 0).
 inline std::optional<Refraction> refract(const Vec3f& w, Vec3f n, float eta) {
   double cos_i = std::clamp(double(dot(n, w)), -1.0, 1.0), e = eta;
   if (cos_i < 0) {
@@ -34,10 +34,9 @@ inline std::optional<Refraction> refract(const Vec3f& w, Vec3f n, float eta) {
   if (e == 1) return Refraction{-w, float(e)};  // index-matched: straight through
   // In double, exactly as fresnel_dielectric_polarized decides total internal reflection, so that
   // R = 1 − T holds to the last bit near the critical angle.
-  const double sin2_t = (1 - cos_i * cos_i) / (e * e);
-  if (sin2_t >= 1) return std::nullopt;
-  const double cos_t = std::sqrt(1 - sin2_t);
-  const Vec3d wt = -Vec3d(w) / e + Vec3d(n) * (cos_i / e - cos_t);
+  const double g2 = e * e - 1 + cos_i * cos_i;
+  if (g2 <= 0) return std::nullopt;
+  const Vec3d wt = (-Vec3d(w) + Vec3d(n) * (cos_i - std::sqrt(g2))) / e;
   return Refraction{Vec3f(normalize(wt)), float(e)};
 }
 
@@ -47,21 +46,22 @@ struct FresnelReflectance {
 };
 
 // Fresnel equations for a dielectric interface (Born & Wolf, "Principles of Optics", §1.5.3):
-//   r⊥ = (cos θ_i − η cos θ_t) / (cos θ_i + η cos θ_t),  r∥ = (η cos θ_i − cos θ_t) / (η cos θ_i + cos θ_t).
-// Computed in double: stable for η from 1e-3 to 1e3 and cos θ_i ∈ [−1, 1]; R = 0 exactly for
-// an index-matched interface and R = 1 under total internal reflection.
+//   r⊥ = (cos θ_i − η cos θ_t) / (cos θ_i + η cos θ_t),  r∥ = (η cos θ_i − cos θ_t) / (η cos θ_i + cos θ_t),
+// with η cos θ_t = g = √(η² − 1 + cos²θ_i) and r∥ multiplied through by η (Walter et al. 2007,
+// eq. 22): r⊥ = (c − g)/(c + g), r∥ = (η² c − g)/(η² c + g), c = cos θ_i; no division before the
+// square root. Computed in double: stable for η from 1e-3 to 1e3 and cos θ_i ∈ [−1, 1]; R = 0
+// exactly for an index-matched interface and R = 1 under total internal reflection (g² ≤ 0).
 inline FresnelReflectance fresnel_dielectric_polarized(float cos_theta_i, float eta) {
-  double cos_i = std::clamp(double(cos_theta_i), -1.0, 1.0), e = eta;
-  if (cos_i < 0) {
+  double c = std::clamp(double(cos_theta_i), -1.0, 1.0), e = eta;
+  if (c < 0) {
     e = 1 / e;
-    cos_i = -cos_i;
+    c = -c;
   }
   if (e == 1) return {0, 0, 0};
-  const double sin2_t = (1 - cos_i * cos_i) / (e * e);
-  if (sin2_t >= 1) return {1, 1, 1};
-  const double cos_t = std::sqrt(1 - sin2_t);
-  const double r_s = (cos_i - e * cos_t) / (cos_i + e * cos_t);
-  const double r_p = (e * cos_i - cos_t) / (e * cos_i + cos_t);
+  const double e2 = e * e, g2 = e2 - 1 + c * c;
+  if (g2 <= 0) return {1, 1, 1};
+  const double g = std::sqrt(g2);
+  const double r_s = (c - g) / (c + g), r_p = (e2 * c - g) / (e2 * c + g);
   const double Rs = r_s * r_s, Rp = r_p * r_p;
   return {float((Rs + Rp) / 2), float(Rs), float(Rp)};
 }

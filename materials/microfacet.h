@@ -46,9 +46,11 @@ class TrowbridgeReitz {
 
   // Density of visible normals seen from w: D_w(m) = G1(w) |w·m| D(m) / |cos θ_w| (for w below
   // the surface, the normals visible from −w).
-  float D_visible(const Vec3f& w, const Vec3f& m) const {
+  float D_visible(const Vec3f& w, const Vec3f& m) const { return D_visible(w, m, D(m)); }
+  // The same with D(m) known (a lobe that evaluates f and pdf at one m).
+  float D_visible(const Vec3f& w, const Vec3f& m, float D_m) const {
     const float cos_w = std::abs(w.z);
-    return cos_w > 0 ? G1(w) * abs_dot(w, m) * D(m) / cos_w : 0.f;
+    return cos_w > 0 ? G1(w) * abs_dot(w, m) * D_m / cos_w : 0.f;
   }
 
   // What a lobe's f and pdf share at one microfacet normal m (Tungsten's eval: one pass for both):

@@ -1,5 +1,7 @@
 #include "spectral/cie.h"
 
+#include <utility>
+
 #include "base/data_path.h"
 #include "base/error.h"
 #include "base/table_file.h"
@@ -58,6 +60,17 @@ Xyz spectrum_to_xyz(const Spectrum& s) {
     z += v * t.z.values()[i];
   }
   return {float(x / t.y_integral), float(y / t.y_integral), float(z / t.y_integral)};
+}
+
+Xyz sampled_xyz_mean(const Spectrum& s) {
+  const CieTables& t = cie();
+  double sum[3] = {0, 0, 0};
+  for (size_t j = 0; j + 1 < t.xyz_rows.size(); ++j)
+    for (const auto& [f, weight] : {std::pair{0.0, 1 / 6.0}, {0.5, 4 / 6.0}, {1.0, 1 / 6.0}}) {
+      const double v = weight * evaluate(s, float(kLambdaMin + double(j) + f));
+      for (int c = 0; c < 3; ++c) sum[c] += v * ((1 - f) * t.xyz_rows[j].v[c] + f * t.xyz_rows[j + 1].v[c]);
+    }
+  return {float(sum[0] / t.y_integral), float(sum[1] / t.y_integral), float(sum[2] / t.y_integral)};
 }
 
 }  // namespace prism

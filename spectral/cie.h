@@ -31,6 +31,11 @@ const CieTables& cie();
 // ∫ S {x̄,ȳ,z̄} dλ / ∫ȳ dλ by 1-nm sums over 360–830 nm.
 Xyz spectrum_to_xyz(const Spectrum& s);
 
+// The mean of to_xyz over the wavelengths a path samples, for a spectrum S: ∫ S {x̄,ȳ,z̄} dλ / ∫ȳ
+// with the tables linear between their 1-nm rows as to_xyz reads them, by Simpson's rule on each
+// nm (exact where S is linear there, as the CIE tables and D65 are).
+Xyz sampled_xyz_mean(const Spectrum& s);
+
 // Monte Carlo estimate of the same integral from one path's N wavelengths: the average over
 // lanes of S(λᵢ) x̄(λᵢ) / p(λᵢ), divided by ∫ȳ. Terminated lanes (pdf 0) contribute 0.
 template <int N>
@@ -38,15 +43,25 @@ Xyz to_xyz(const SampledSpectrum<N>& s, const SampledWavelengths<N>& lambda) {
   using Float4 = float __attribute__((vector_size(16)));
   const CieTables& t = cie();
   const int last = int(t.xyz_rows.size()) - 1;
+  // Each lane's weight S(λ)/p(λ), row and fraction first, all lanes at once (SIMD): a lane outside
+  // the rows or terminated (pdf 0) weighs 0·S. (Written so that the loop vectorises on AVX2 too: no
+  // branches or selects of a quotient, the division done on every lane, by at least 1e-30.)
+  std::array<float, N> w, f;
+  std::array<int, N> row;
+  const float top = float(last);
+  for (int i = 0; i < N; ++i) {
+    const float u = lambda[i] - kLambdaMin, pdf = lambda.pdf()[i];
+    const float keep = (u >= 0.f) & (u <= top) & (pdf > 0.f) ? 1.f : 0.f;
+    const float x = std::min(std::max(0.f, u), top);  // u where kept; NaN to 0
+    row[i] = std::min(int(x), last - 1);
+    f[i] = x - float(row[i]);
+    w[i] = keep * s[i] / std::max(pdf, 1e-30f);
+  }
+  // Then x̄, ȳ, z̄ linear between the 1-nm rows, one 4-float row pair per lane.
   Float4 sum{0, 0, 0, 0};
   for (int i = 0; i < N; ++i) {
-    // x̄, ȳ, z̄ linear between the 1-nm rows, 0 outside them; a terminated lane adds nothing.
-    const float u = lambda[i] - kLambdaMin, pdf = lambda.pdf()[i];
-    if (!(u >= 0.f) || u > float(last) || pdf == 0.f) continue;
-    const int j = std::min(int(u), last - 1);
-    const float f = u - float(j), w = s[i] / pdf;
-    const auto a = std::bit_cast<Float4>(t.xyz_rows[j]), b = std::bit_cast<Float4>(t.xyz_rows[j + 1]);
-    sum += w * ((1.f - f) * a + f * b);
+    const auto a = std::bit_cast<Float4>(t.xyz_rows[row[i]]), b = std::bit_cast<Float4>(t.xyz_rows[row[i] + 1]);
+    sum += w[i] * ((1.f - f[i]) * a + f[i] * b);
   }
   const float norm = 1.f / (N * t.y_integral);
   return {sum[0] * norm, sum[1] * norm, sum[2] * norm};

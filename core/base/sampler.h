@@ -84,13 +84,20 @@ class Sampler {
   explicit Sampler(uint64_t seed = 0, SamplerKind kind = SamplerKind::sobol) : seed_(seed), kind_(kind) {}
 
   void start_pixel_sample(Vec2i pixel, int64_t sample_index, int replicate = 0) {
-    const uint64_t pixel_hash =
-        replicate == 0 ? hash_ints(pixel.x, pixel.y, seed_) : hash_ints(pixel.x, pixel.y, seed_, replicate);
-    pixel_state_ = hash_ints(pixel_hash);
+    start_pixel(pixel, replicate);
+    start_sample(sample_index);
+  }
+  // start_pixel_sample in two steps, for a renderer that takes many samples of one pixel: what
+  // depends on the pixel (and replicate) alone once, then each sample.
+  void start_pixel(Vec2i pixel, int replicate = 0) {
+    pixel_hash_ = replicate == 0 ? hash_ints(pixel.x, pixel.y, seed_) : hash_ints(pixel.x, pixel.y, seed_, replicate);
+    pixel_state_ = hash_ints(pixel_hash_);
+  }
+  void start_sample(int64_t sample_index) {
     reversed_index_ = sobol::reverse_bits(uint32_t(sample_index));
     dimension_ = 0;
     if (kind_ == SamplerKind::independent) {
-      rng_.set_sequence(pixel_hash, 0);
+      rng_.set_sequence(pixel_hash_, 0);
       rng_.advance(uint64_t(sample_index) * 65536ull);
     }
   }
@@ -120,7 +127,7 @@ class Sampler {
 
  private:
   // hash_ints(pixel hash, dimension) for the next dimension, its first round (the pixel's) done
-  // once per sample in start_pixel_sample.
+  // once per pixel in start_pixel.
   uint64_t dimension_hash() { return hash_continue(pixel_state_, dimension_++); }
   // This dimension's own permutation of the pixel's sample indices (padding): the nested
   // scramble of the index, with its bit reversal done once per sample.
@@ -136,7 +143,7 @@ class Sampler {
   uint64_t seed_;
   SamplerKind kind_;
   Rng rng_;
-  uint64_t pixel_state_ = 0;
+  uint64_t pixel_hash_ = 0, pixel_state_ = 0;
   uint32_t reversed_index_ = 0, dimension_ = 0;
 };
 

@@ -49,7 +49,8 @@ bool pass_through(float alpha, float w, float u, SampledSpectrum<N>& beta) {
 
 template <int N, bool Media, bool Dispersion>
 SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavelengths<N>& lambda, Sampler& sampler,
-                                 const PathOptions& options, RayCounters& counters) {
+                                 const PathOptions& options, RayCounters& counters,
+                                 const std::optional<SurfaceInteraction>* first) {
   // At a dispersive interface the lanes' pdfs of a direction differ: path_pdfs are the path's pdfs
   // under each lane as the hero, relative to each other, for spectral MIS (dispersive_bsdf.h).
   SampledSpectrum<N> L(0.f), beta(1.f), path_pdfs(1.f);
@@ -70,7 +71,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
   for (int depth = 0, vertex = 0;; ++vertex) {
     sampler.start_bounce(vertex);
     ++(vertex == 0 ? counters.primary : counters.secondary);
-    const auto si = world.intersect(ray, true);
+    const auto si = vertex == 0 && first ? *first : world.intersect(ray, true);
     if constexpr (Media) beta *= media.transmittance(si ? si->t : kInfinity, lambda);
     const float alpha = si ? si->material->blend_opacity(si->at) : 1.f;  // < 1: an alpha BLEND surface, partly a hole
 
@@ -184,7 +185,8 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
 
 #define PRISM_INSTANTIATE(N, MEDIA, DISPERSION)                                                                    \
   template SampledSpectrum<N> path_radiance<N, MEDIA, DISPERSION>(const World&, Ray, const SampledWavelengths<N>&, \
-                                                                  Sampler&, const PathOptions&, RayCounters&);
+                                                                  Sampler&, const PathOptions&, RayCounters&,      \
+                                                                  const std::optional<SurfaceInteraction>*);
 #define PRISM_INSTANTIATE_ALL(N)     \
   PRISM_INSTANTIATE(N, false, false) \
   PRISM_INSTANTIATE(N, false, true)  \

@@ -26,9 +26,11 @@ struct PathFeatures {
 // Radiance arriving along `ray` at the path's wavelengths. Past a dispersive interface every lane
 // keeps its own estimate f_k / ((1/N) Σ_j p_j), p_j the path's pdf with lane j as the hero
 // (hero-wavelength spectral MIS, dispersive_bsdf.h); past a delta sample there (a smooth refraction
-// or reflection), only the hero's (lane 0, N times over).
+// or reflection), only the hero's (lane 0, N times over). `first`, when given, is what
+// world.intersect(ray, true) returns, found already by the caller.
 template <int N, bool Media, bool Dispersion>
 SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavelengths<N>& lambda, Sampler& sampler,
-                                 const PathOptions& options, RayCounters& counters);
+                                 const PathOptions& options, RayCounters& counters,
+                                 const std::optional<SurfaceInteraction>* first = nullptr);
 
 }  // namespace prism

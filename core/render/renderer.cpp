@@ -22,18 +22,31 @@ constexpr int kTileSize = 16;
 
 template <int N>
 using RadianceFn = SampledSpectrum<N> (*)(const World&, Ray, const SampledWavelengths<N>&, Sampler&, const PathOptions&,
-                                          RayCounters&);
+                                          RayCounters&, const std::optional<SurfaceInteraction>* first);
 
 // The radiance estimator for these options, compiled for the scene's features.
 template <int N>
 RadianceFn<N> radiance_estimator(const World& world, const RenderOptions& options) {
   if (options.integrator == IntegratorKind::whitted)
-    return [](const World& w, Ray r, const SampledWavelengths<N>& l, Sampler& s, const PathOptions& o, RayCounters& c) {
+    return [](const World& w, Ray r, const SampledWavelengths<N>& l, Sampler& s, const PathOptions& o, RayCounters& c,
+              const std::optional<SurfaceInteraction>*) {  // given no first hit (see sky_xyz)
       return whitted_radiance<N>(w, r, l, s, o, c);
     };
   const PathFeatures f = options.features.value_or(path_features(world.features()));
   if (f.media) return f.dispersion ? &path_radiance<N, true, true> : &path_radiance<N, true, false>;
   return f.dispersion ? &path_radiance<N, false, true> : &path_radiance<N, false, false>;
+}
+
+// A camera ray that leaves the scene at once sees the constant environment, and the XYZ that the
+// path's wavelengths estimate of it has a known mean (sampled_xyz_mean): that mean, found once, is
+// such a sample's value, the estimate replaced by its expectation given the ray (Rao–Blackwell),
+// without the wavelengths' colour noise or their spectral work (the sky is 64–78% of the pixels
+// of Box, AttenuationTest and MetalRoughSpheres). For the path tracer, when no spectral bins are
+// kept (they need the lanes).
+std::optional<Xyz> sky_xyz(const World& world, const RenderOptions& options) {
+  const auto* sky = world.environment() ? std::get_if<EnvironmentLight>(world.environment()) : nullptr;
+  if (!sky || options.integrator != IntegratorKind::path || options.spectral_bins.count() > 0) return std::nullopt;
+  return sampled_xyz_mean(*sky->radiance);
 }
 
 // One camera sample: its wavelengths, the radiance they carry, and what the film keeps of it.
@@ -95,19 +108,30 @@ VcmIteration<N> trace_iteration(const BdptScene& scene, const RenderOptions& opt
 }
 
 // The body of the render: sample s of a pixel, from the sampler's stream for (pixel, s, seed)
-// alone, through the camera and the radiance estimator to CIE XYZ.
+// alone (the sampler started at the pixel), through the camera and the radiance estimator to CIE XYZ.
+// With a sky (sky_xyz), the camera ray is traced here first.
 template <int N>
 CameraSample<N> camera_sample(const World& world, const Camera& camera, const RenderOptions& options,
-                              RadianceFn<N> radiance, Splatting<N>& bdpt, Sampler& sampler, Vec2i pixel, int s,
-                              int replicate, RayCounters& rays) {
-  sampler.start_pixel_sample(pixel, s, replicate);
+                              RadianceFn<N> radiance, const std::optional<Xyz>& sky, Splatting<N>& bdpt,
+                              Sampler& sampler, Vec2i pixel, int s, RayCounters& rays) {
+  sampler.start_sample(s);
   const Vec2f jitter = sampler.get_2d();
-  CameraSample<N> c{SampledWavelengths<N>::sample(sampler.get_2d()), {}, {}, {}};
-  if (bdpt.lambda) c.lambda = *bdpt.lambda;
+  CameraSample<N> c{};
   c.ray = camera.generate_ray(float(pixel.x) + jitter.x, float(pixel.y) + jitter.y);
+  std::optional<SurfaceInteraction> first;
+  if (sky) {
+    first = world.intersect(c.ray, true);  // as path_radiance would
+    if (!first) {
+      ++rays.primary;
+      c.xyz = *sky;
+      return c;
+    }
+  }
+  const Vec2f u_lambda = sampler.get_2d();  // the camera's second dimension, drawn only for a path that needs it
+  c.lambda = bdpt.lambda ? *bdpt.lambda : SampledWavelengths<N>::sample(u_lambda);
   c.L = bdpt.scene ? bdpt_radiance<N>(*bdpt.scene, c.ray, c.lambda, sampler, options.path, bdpt.vcm, *bdpt.splats, rays,
                                       bdpt.invalid)
-                   : radiance(world, c.ray, c.lambda, sampler, options.path, rays);
+                   : radiance(world, c.ray, c.lambda, sampler, options.path, rays, sky ? &first : nullptr);
   c.xyz = to_xyz(c.L, c.lambda);
   return c;
 }
@@ -141,8 +165,8 @@ struct PassStats {
 // Takes every active pixel of the tile at (x0, y0) from the samples it has to `end`.
 template <int N>
 void render_tile(const World& world, const Camera& camera, const RenderOptions& options, RadianceFn<N> radiance,
-                 Splatting<N> bdpt, int x0, int y0, int end, const std::vector<uint8_t>& active, Film& film,
-                 PassStats& stats) {
+                 const std::optional<Xyz>& sky, Splatting<N> bdpt, int x0, int y0, int end,
+                 const std::vector<uint8_t>& active, Film& film, PassStats& stats) {
   Sampler sampler(options.seed, options.sampler);
   const bool first_hits = options.aovs & (kAovAlbedo | kAovNormal | kAovDepth);
   const int bins = film.bins().count();
@@ -154,11 +178,12 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
       // Each sample index once, or in the pixels the error estimate replicates twice (error_estimate.h;
       // not in bidirectional renders, whose light paths must be one per sample index).
       const int replicates = !bdpt.scene && replicated_pixel({x, y}, options.seed) ? 2 : 1;
-      for (int64_t k = int64_t(options.sample_begin + film.samples(p)) * replicates; k < int64_t(end) * replicates;
-           ++k) {
+      const int64_t first = int64_t(options.sample_begin + film.samples(p)) * replicates;
+      for (int64_t k = first; k < int64_t(end) * replicates; ++k) {
         const int s = int(k / replicates), r = int(k % replicates);
+        if (replicates > 1 || k == first) sampler.start_pixel({x, y}, r);
         const CameraSample<N> c =
-            camera_sample<N>(world, camera, options, radiance, bdpt, sampler, {x, y}, s, r, stats.rays);
+            camera_sample<N>(world, camera, options, radiance, sky, bdpt, sampler, {x, y}, s, stats.rays);
         FilmSample fs{c.xyz};
         if (first_hits) first_hit<N>(world, c.ray, c.lambda, fs);
         ++stats.samples;
@@ -175,6 +200,7 @@ template <int N>
 RenderResult render_with(const World& world, const Camera& camera, const RenderOptions& options,
                          const RenderControl& control, std::optional<RenderState> resume) {
   const RadianceFn<N> radiance = radiance_estimator<N>(world, options);
+  const std::optional<Xyz> sky = sky_xyz(world, options);
   const bool bidirectional =
       options.integrator != IntegratorKind::path && options.integrator != IntegratorKind::whitted;
   std::optional<BdptScene> bdpt_scene;
@@ -219,7 +245,7 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
       parallel_for(int64_t(tiles_x) * tiles_y, [&](int64_t tile) {
         PassStats ps;
         const Splatting<N> bdpt{bdpt_scene ? &*bdpt_scene : nullptr, splats ? &splats->local() : nullptr, vcm, lambda};
-        render_tile<N>(world, camera, options, radiance, bdpt, int(tile % tiles_x) * kTileSize,
+        render_tile<N>(world, camera, options, radiance, sky, bdpt, int(tile % tiles_x) * kTileSize,
                        int(tile / tiles_x) * kTileSize, to, active, state.film, ps);
         {
           std::lock_guard lock(stats_mutex);

@@ -223,6 +223,43 @@ TEST_CASE("closest hit and any hit equal brute force on random rays") {
   CHECK(hits > 2000);  // the test exercises hits, not only misses
 }
 
+TEST_CASE("leaves of 1 to 12 triangles (a block partly or wholly used, two blocks) equal brute force") {
+  // n overlapping triangles in one cluster are a single leaf; 64 such clusters far apart are a
+  // leaf each. Rays aimed into the clusters hit several triangles of a leaf, in any lane of its
+  // first block and in its second.
+  Rng rng(21, 0);
+  for (int n = 1; n <= 12; ++n) {
+    for (const int clusters : {1, 64}) {
+      INFO(n << " triangles in each of " << clusters << " clusters");
+      Soup soup;
+      std::vector<Vec3f> centres;
+      for (int c = 0; c < clusters; ++c) {
+        const Vec3f centre(float(c % 4) * 10, float(c / 4 % 4) * 10, float(c / 16) * 10);
+        centres.push_back(centre);
+        for (int i = 0; i < n; ++i)
+          soup.add(centre + random_in(rng, -1, 1), centre + random_in(rng, -1, 1), centre + random_in(rng, -1, 1));
+      }
+      const TestScene scene = single(soup);
+      const Accel accel = scene.build();
+      constexpr int kLanes = TriangleBlock::kLanes;
+      if (clusters == 1 && n <= kLanes)  // one leaf, no node: one block (and the two per-instance numbers)
+        CHECK(accel.memory_bytes() == sizeof(TriangleBlock) + 2 * sizeof(uint32_t));
+      const BruteForce brute_force(scene.world_triangles());
+      int hits = 0;
+      for (int i = 0; i < 400; ++i) {
+        const Vec3f target =
+            centres[size_t(rng.uniform() * float(clusters)) % centres.size()] + random_in(rng, -0.3f, 0.3f);
+        const Vec3f o = target + sample_uniform_sphere({rng.uniform(), rng.uniform()}) * 5.f;
+        const Ray ray{o, normalize(target - o), rng.uniform() < 0.2f ? 5.f : kInfinity};
+        require_exact(accel, brute_force, ray);
+        AccelHit h;
+        hits += accel.intersect(ray, h);
+      }
+      CHECK(hits > 40);
+    }
+  }
+}
+
 TEST_CASE("adversarial rays equal brute force, at ordinary, huge and tiny coordinates") {
   Rng rng(4, 0);
   const Soup base = adversarial_scene();

@@ -4,6 +4,8 @@
 #include <catch2/catch.hpp>
 
 #include "scene/gltf_loader.h"
+#include "spectral/cie.h"
+#include "spectral/color_pipeline.h"
 #include "support/test_scenes.h"
 
 using namespace prism;
@@ -106,6 +108,24 @@ TEST_CASE("alpha MASK cuts surfaces away where the texture's alpha is below the 
   for (int c = 0; c < 3; ++c) CHECK(opaque.mean(c) == Approx(0).margin(1e-6));
 }
 
+TEST_CASE("a camera ray that leaves at once sees the constant sky's exact mean, the same in every sample") {
+  // The renderer's sky_xyz: no wavelength noise where the sky is seen straight (the quad cut away);
+  // through a clear BLEND sheet (alpha 0) the path carries wavelengths, whose estimate has that mean.
+  PbrMaterial p = black();
+  p.alpha = 0;
+  Material hole{.name = "hole", .kind = p};
+  hole.alpha_mode = AlphaMode::mask;
+  const Xyz xyz = sampled_xyz_mean(*quad_before_sky(hole).environment);
+  float exact[3] = {xyz.x, xyz.y, xyz.z};
+  ColorPipeline::standard().convert(ColorPipeline::kXyz, ColorPipeline::kDefaultOutput, exact, 1);
+  const auto straight = test::render_rgb(quad_before_sky(hole), kCamera, 8, 8, 4);
+  for (size_t i = 0; i < straight.rgb.size(); ++i) CHECK(straight.rgb[i] == Approx(exact[i % 3]).epsilon(1e-6));
+  CHECK(straight.stats.rays.primary == straight.stats.samples);  // one camera ray each, counted
+  hole.alpha_mode = AlphaMode::blend;
+  const auto through = test::render_rgb(quad_before_sky(hole), kCamera, 8, 8, 64);
+  for (int c = 0; c < 3; ++c) CHECK(through.mean(c) == Approx(exact[c]).epsilon(1e-3));
+}
+
 TEST_CASE("alpha BLEND lets the sky through in proportion to 1 - alpha") {
   PbrMaterial p = black();
   p.alpha = 0.3f;
@@ -135,8 +155,11 @@ TEST_CASE("alpha BLEND over a grey Lambertian: every sample carries the mean, pa
     o.progress = false;
     return test::render_rgb(quad_before_sky(material), kCamera, 12, 12, o);
   };
+  // The sky alone, through a clear sheet (alpha 0, passed at once): seen straight from the camera it
+  // would be its exact mean (the renderer's sky_xyz), without the wavelengths' noise that the sheet's
+  // render carries, sample for sample, like this one.
   Material hole = m;
-  hole.alpha_mode = AlphaMode::mask;  // alpha 0.3 < cutoff 0.5: cut away everywhere, the sky alone
+  std::get<PbrMaterial>(hole.kind).alpha = 0;
   const auto sky = render(hole, 4), sheet = render(m, 4);
   CHECK(sheet.stats.invalid_samples == 0);
   for (size_t i = 0; i < sky.rgb.size(); ++i) {
