@@ -60,17 +60,17 @@ class ConductorBsdf {
 
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const { return eval(wo, wi).f; }
 
-  // f and pdf with one half vector m and one D(m).
+  // f and pdf with one half vector m, one D(m) and one Λ(wo).
   BsdfEval<N> eval(Vec3f wo, Vec3f wi) const {
     if (smooth_ || !same_hemisphere(wo, wi)) return {SampledSpectrum<N>(0.f), 0.f};
     if (wo.z < 0) wo = -wo, wi = -wi;
     const Vec3f m = wo + wi;
     if (length_squared(m) == 0) return {SampledSpectrum<N>(0.f), 0.f};
     const Vec3f wm = normalize(m);
-    const float D = distribution_.D(wm);
-    const SampledSpectrum<N> f = reflectance(dot(wo, wm)) * (D * distribution_.G(wo, wi) / (4 * wo.z * wi.z));
+    const TrowbridgeReitz::Facet t = distribution_.facet(wo, wi, wm);
+    const SampledSpectrum<N> f = reflectance(dot(wo, wm)) * (t.D * t.G / (4 * wo.z * wi.z));
     return {compensate_ ? f * multiple_scattering(wo.z) : f,
-            distribution_.D_visible(wo, wm, D) / (4 * abs_dot(wo, wm))};
+            TrowbridgeReitz::D_visible(wo, wm, t) / (4 * abs_dot(wo, wm))};
   }
 
   // Visible-normal sampling: pdf(wi) = D_wo(m) / (4 |wo·m|).

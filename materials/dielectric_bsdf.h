@@ -123,21 +123,22 @@ class DielectricBsdf {
 
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const {
     const auto h = half_vector(wo, wi);
-    return h ? f(wo, wi, *h, fresnel(dot(wo, h->wm)), distribution_.D(h->wm)) : SampledSpectrum<N>(0.f);
+    return h ? f(wo, wi, *h, facet(wo, wi, *h), fresnel(dot(wo, h->wm))) : SampledSpectrum<N>(0.f);
   }
 
   float pdf(const Vec3f& wo, const Vec3f& wi) const {
     const auto h = half_vector(wo, wi);
-    return h ? pdf(wo, wi, *h, selection(dot(wo, h->wm)), distribution_.D(h->wm)) : 0.f;
+    return h ? pdf(wo, wi, *h, facet(wo, wi, *h), selection(dot(wo, h->wm))) : 0.f;
   }
 
-  // f and pdf with one half vector, one Fresnel reflectance and one D.
+  // f and pdf with one half vector, one D(m) and Λ(wo), and one Fresnel reflectance.
   BsdfEval<N> eval(const Vec3f& wo, const Vec3f& wi) const {
     const auto h = half_vector(wo, wi);
     if (!h) return {SampledSpectrum<N>(0.f), 0.f};
-    const float c = dot(wo, h->wm), D = distribution_.D(h->wm);
+    const TrowbridgeReitz::Facet t = facet(wo, wi, *h);
+    const float c = dot(wo, h->wm);
     const SampledSpectrum<N> F = fresnel(c);
-    return {f(wo, wi, *h, F, D), pdf(wo, wi, *h, selection(c, F), D)};
+    return {f(wo, wi, *h, t, F), pdf(wo, wi, *h, t, selection(c, F))};
   }
 
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
@@ -176,18 +177,24 @@ class DielectricBsdf {
     float eta_p;
   };
 
-  // f at the half vector h with the Fresnel reflectance F and D there, compensated (see the header).
-  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, const SampledSpectrum<N>& F,
-                       float D) const {
-    if (!compensate_) return single_scattering(wo, wi, h, F, D);
-    if (thin_ && transmission_ < 1 && h.reflection) return partly_clear_reflection(wo, wi, h, F, D);
+  // D, G and G1(wo) at the half vector h (the far-side lobe's wi is mirrored, which leaves Λ(wi) as it is).
+  TrowbridgeReitz::Facet facet(const Vec3f& wo, const Vec3f& wi, const HalfVector& h) const {
+    return distribution_.facet(wo, wi, h.wm);
+  }
+
+  // f at the half vector h with its facet's terms t and the Fresnel reflectance F there,
+  // compensated (see the header).
+  SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, const TrowbridgeReitz::Facet& t,
+                       const SampledSpectrum<N>& F) const {
+    if (!compensate_) return single_scattering(wo, wi, h, t, F);
+    if (thin_ && transmission_ < 1 && h.reflection) return partly_clear_reflection(wo, wi, t, F);
     if constexpr (Extensions)
       if (lanes_ && lanes_->eta) {  // each lane's reflectance follows its own index: so does its E
-        SampledSpectrum<N> f = single_scattering(wo, wi, h, F, D);
+        SampledSpectrum<N> f = single_scattering(wo, wi, h, t, F);
         for (int i = 0; i < N; ++i) f[i] /= single_scattering_albedo(wo.z, (*lanes_->eta)[i]);
         return f;
       }
-    return single_scattering(wo, wi, h, F, D) / single_scattering_albedo(wo.z, eta_);
+    return single_scattering(wo, wi, h, t, F) / single_scattering_albedo(wo.z, eta_);
   }
 
   // The selection share from the face's reflectance F at the same facet: without per-lane
@@ -198,11 +205,11 @@ class DielectricBsdf {
     return F[0];
   }
 
-  // pdf at the half vector h, with `face` the selection share and D the distribution there.
-  float pdf(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, float face, float D) const {
+  // pdf at the half vector h with its facet's terms t, `face` the selection share there.
+  float pdf(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, const TrowbridgeReitz::Facet& t, float face) const {
     const auto [R, T] = shares(face);
     if (R + T <= 0) return 0.f;
-    const float Dv = distribution_.D_visible(wo, h.wm, D);
+    const float Dv = TrowbridgeReitz::D_visible(wo, h.wm, t);
     if (h.reflection) return Dv / (4 * abs_dot(wo, h.wm)) * R / (R + T);
     if (thin_) return Dv / (4 * abs_dot(wo, h.wm)) * T / (R + T);
     const float dwm_dwi = abs_dot(wi, h.wm) / sqr(dot(wi, h.wm) + dot(wo, h.wm) / h.eta_p);
@@ -224,15 +231,13 @@ class DielectricBsdf {
   }
 
   SampledSpectrum<N> single_scattering(const Vec3f& wo, const Vec3f& wi, const HalfVector& h,
-                                       const SampledSpectrum<N>& F, float D) const {
-    if (h.reflection) return reflected(F) * (D * distribution_.G(wo, wi) / std::abs(4 * wi.z * wo.z));
+                                       const TrowbridgeReitz::Facet& t, const SampledSpectrum<N>& F) const {
+    const float D = t.D;
+    if (h.reflection) return reflected(F) * (D * t.G / std::abs(4 * wi.z * wo.z));
     const SampledSpectrum<N> T = tint_ * transmitted(F);
-    if (thin_) {
-      const Vec3f mirrored(wi.x, wi.y, -wi.z);
-      return T * (transmission_ * D * distribution_.G(wo, mirrored) / std::abs(4 * wi.z * wo.z));
-    }
+    if (thin_) return T * (transmission_ * D * t.G / std::abs(4 * wi.z * wo.z));  // G(wo, wi mirrored) = G(wo, wi)
     const float denom = sqr(dot(wi, h.wm) + dot(wo, h.wm) / h.eta_p) * wi.z * wo.z;
-    const float ft = D * distribution_.G(wo, wi) * std::abs(dot(wi, h.wm) * dot(wo, h.wm) / denom);
+    const float ft = D * t.G * std::abs(dot(wi, h.wm) * dot(wo, h.wm) / denom);
     return T * (transmission_ * ft / sqr(h.eta_p));
   }
 
@@ -240,11 +245,11 @@ class DielectricBsdf {
   // the one interface's (the albedo the diffuse base's coupling subtracts, SpecularAlbedo::E), the
   // sheet's t R' as the thin wall's. (The whole divided by the thin wall's white E let a rough white
   // wall return 1.02 of the light at roughness 1, t = 0.25.)
-  SampledSpectrum<N> partly_clear_reflection(const Vec3f& wo, const Vec3f& wi, const HalfVector& h,
-                                             const SampledSpectrum<N>& F, float D) const {
+  SampledSpectrum<N> partly_clear_reflection(const Vec3f& wo, const Vec3f& wi, const TrowbridgeReitz::Facet& t,
+                                             const SampledSpectrum<N>& F) const {
     const SpecularAlbedo& table = SpecularAlbedo::table();
     const float mu = std::abs(wo.z), sheet = transmission_ / table.white(mu, roughness_);
-    const float lobe = D * distribution_.G(wo, wi) / std::abs(4 * wi.z * wo.z);
+    const float lobe = t.D * t.G / std::abs(4 * wi.z * wo.z);
     SampledSpectrum<N> f;
     for (int i = 0; i < N; ++i) {
       float eta = eta_;

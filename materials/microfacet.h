@@ -53,6 +53,21 @@ class TrowbridgeReitz {
     return cos_w > 0 ? G1(w) * abs_dot(w, m) * D_m / cos_w : 0.f;
   }
 
+  // What a lobe's f and pdf share at one microfacet normal m (Tungsten's eval: one pass for both):
+  // D(m), G(wo, wi) and G1(wo), Λ(wo) found once for the two.
+  struct Facet {
+    float D, G, G1_o;
+  };
+  Facet facet(const Vec3f& wo, const Vec3f& wi, const Vec3f& m) const {
+    const float lambda_o = lambda(wo);
+    return {D(m), 1 / (1 + lambda_o + lambda(wi)), 1 / (1 + lambda_o)};
+  }
+  // D_visible(wo, m) from the facet's terms.
+  static float D_visible(const Vec3f& wo, const Vec3f& m, const Facet& t) {
+    const float cos_w = std::abs(wo.z);
+    return cos_w > 0 ? t.G1_o * abs_dot(wo, m) * t.D / cos_w : 0.f;
+  }
+
   // A visible normal from w (taken in the upper hemisphere), distributed as D_visible(w, ·).
   Vec3f sample_visible_normal(Vec3f w, Vec2f u) const {
     if (w.z < 0) w = -w;

@@ -65,13 +65,13 @@ class PbrBsdf {
       if (!extras) return;
       extras_ = Parts{extras->diffuse_transmission, extras->transmitted_albedo, {}};
       if (!extras->lane_etas) return;
-      extras_->lanes = LaneCoupling{{}, extras->lane_excess.value_or(SampledSpectrum<N>(0.f)), {}};
+      std::array<float, N> eta;
+      for (int i = 0; i < N; ++i) eta[i] = (*extras->lane_etas)[i];
+      extras_->lanes =
+          LaneCoupling{SpecularAlbedo::Lanes<N>(eta), extras->lane_excess.value_or(SampledSpectrum<N>(0.f)), {}};
       const float white_average = extras->lane_excess ? SpecularAlbedo::table().white_average(roughness_) : 0.f;
       LaneCoupling& lanes = *extras_->lanes;
-      std::array<float, N> eta, average;
-      for (int i = 0; i < N; ++i) eta[i] = (*extras->lane_etas)[i];
-      SpecularAlbedo::index(eta, lanes.eta);
-      SpecularAlbedo::table().average(roughness_, lanes.eta, compensated, average);
+      const std::array<float, N> average = SpecularAlbedo::table().average(roughness_, lanes.eta, compensated);
       for (int i = 0; i < N; ++i) lanes.e_avg[i] = specular * (average[i] + lanes.excess[i] * white_average);
     }
   }
@@ -174,7 +174,7 @@ class PbrBsdf {
       const SpecularAlbedo& table = SpecularAlbedo::table();
       const SpecularAlbedo::Direction o = SpecularAlbedo::direction(outgoing_.mu, roughness_);
       outgoing_.white = film ? table.white(o) : 0.f;
-      table.E(o, extras_->lanes->eta, compensated_, outgoing_.lane_e);
+      outgoing_.lane_e = table.E(o, extras_->lanes->eta, compensated_);
       outgoing_.lanes = true;
     }
     return outgoing_;
@@ -197,8 +197,7 @@ class PbrBsdf {
       const SpecularAlbedo::Direction in = SpecularAlbedo::direction(std::abs(wi.z), roughness_);
       const float white_o = o.white, white_i = film ? table.white(in) : 0.f;
       const std::array<float, N>& lane_e_o = o.lane_e;  // each lane's E(μ) at its own index, before specular_
-      std::array<float, N> lane_e_i;
-      table.E(in, lanes.eta, compensated_, lane_e_i);
+      const std::array<float, N> lane_e_i = table.E(in, lanes.eta, compensated_);
       // 0 where E_avg ≥ 1: a factor 0 or 1 and a divisor chosen per lane in a loop of their own,
       // so that the lanes' loop has no branch and runs on all lanes at once (SIMD).
       std::array<float, N> divisor, kept;
@@ -276,7 +275,7 @@ class PbrBsdf {
   }
 
   struct LaneCoupling {
-    std::array<SpecularAlbedo::Index, N> eta;  // each lane's index, placed on the albedo tables once
+    SpecularAlbedo::Lanes<N> eta;  // each lane's index, placed on the albedo tables once
     SampledSpectrum<N> excess, e_avg;
   };
   struct Parts {

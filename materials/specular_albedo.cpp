@@ -26,17 +26,6 @@ float reflection_at(const Point& p, float eta, bool compensated) {
   return (1 - h.t) * reflection(h.i, compensated).at(p) + h.t * reflection(h.i + 1, compensated).at(p);
 }
 
-// Each lane's value of a quantity known at the η nodes, node(h), interpolated to the lane's
-// index: the nodes between the lanes' lowest and highest are each found once, for all lanes.
-template <class Node>
-void across_lanes(std::span<const SpecularAlbedo::Index> eta, const Node& node, std::span<float> out) {
-  int lo = kEta, hi = 0;
-  for (const SpecularAlbedo::Index& x : eta) lo = std::min(lo, x.h), hi = std::max(hi, x.h);
-  std::array<float, kEta> e;  // at the nodes lo … hi + 1
-  for (int h = lo; h <= hi + 1; ++h) e[h] = node(h);
-  for (size_t i = 0; i < eta.size(); ++i) out[i] = (1 - eta[i].th) * e[eta[i].h] + eta[i].th * e[eta[i].h + 1];
-}
-
 }  // namespace
 
 SpecularAlbedo::Roughness SpecularAlbedo::roughness(float alpha) {
@@ -70,21 +59,14 @@ const SpecularAlbedo& SpecularAlbedo::table() {
   return t;
 }
 
-void SpecularAlbedo::index(std::span<const float> eta, std::span<Index> out) {
-  for (size_t i = 0; i < eta.size(); ++i) {
-    const Lerp h = locate_eta(eta[i]);
-    out[i] = {eta[i], h.i, h.t};
-  }
+SpecularAlbedo::Index SpecularAlbedo::index(float eta) {
+  const Lerp h = locate_eta(eta);
+  return {h.i, h.t};
 }
 
-void SpecularAlbedo::E(const Direction& d, std::span<const Index> eta, bool compensated, std::span<float> out) const {
-  if (d.smooth) {
-    for (size_t i = 0; i < eta.size(); ++i) out[i] = fresnel_dielectric(d.mu, eta[i].eta);
-    return;
-  }
+void SpecularAlbedo::E(const Direction& d, int first, int last, bool compensated, std::span<float> out) const {
   const Point p = point(d);
-  across_lanes(
-      eta, [&](int h) { return reflection(h, compensated).at(p); }, out);
+  for (int h = first; h <= last; ++h) out[h - first] = reflection(h, compensated).at(p);
 }
 
 float SpecularAlbedo::E(float mu, const Roughness& r, float eta, bool compensated) const {
@@ -97,11 +79,9 @@ float SpecularAlbedo::average(const Roughness& r, float eta, bool compensated) c
   return (1 - h.t) * reflection(h.i, compensated).average(a) + h.t * reflection(h.i + 1, compensated).average(a);
 }
 
-void SpecularAlbedo::average(const Roughness& r, std::span<const Index> eta, bool compensated,
-                             std::span<float> out) const {
+void SpecularAlbedo::average(const Roughness& r, int first, int last, bool compensated, std::span<float> out) const {
   const Lerp a{r.a, r.ta};
-  across_lanes(
-      eta, [&](int h) { return reflection(h, compensated).average(a); }, out);
+  for (int h = first; h <= last; ++h) out[h - first] = reflection(h, compensated).average(a);
 }
 
 float SpecularAlbedo::interface(float mu, const Roughness& r, float eta) const {

@@ -16,7 +16,12 @@
 // smoothly enough for linear interpolation; the tables are computed at build time
 // (materials/albedo_tables.h), so a lookup only interpolates.
 
+#include <algorithm>
+#include <array>
 #include <span>
+
+#include "materials/albedo_tables.h"
+#include "materials/fresnel.h"
 
 namespace prism {
 
@@ -39,28 +44,81 @@ class SpecularAlbedo {
     float ta, tm;
   };
   static Direction direction(float mu, const Roughness& r);
-  // Where an index η falls on the tables' η axis: found once per lane by a lobe that looks up E
-  // for each lane's own index at several μ (the lanes' reflectance coupling, pbr_bsdf.h).
+  // Where an index η falls on the tables' η axis: between the nodes h and h + 1, at t from h.
   struct Index {
-    float eta;
     int h;
-    float th;
+    float t;
   };
-  static void index(std::span<const float> eta, std::span<Index> out);
+  static Index index(float eta);
+  // Each lane's index placed on the η axis once, when a lobe is built (the lanes' reflectance
+  // coupling, pbr_bsdf.h), with the nodes the lanes span, first … last; kept as arrays over the
+  // lanes, so that a loop over them runs on all of them at once (SIMD).
+  template <int N>
+  struct Lanes {
+    std::array<float, N> eta, t;
+    std::array<int, N> h;
+    int first, last;
+
+    explicit Lanes(const std::array<float, N>& etas) : eta(etas), first(albedo_tables::kEta), last(0) {
+      for (int i = 0; i < N; ++i) {
+        const Index x = index(eta[i]);
+        h[i] = x.h, t[i] = x.t;
+        first = std::min(first, x.h), last = std::max(last, x.h + 1);
+      }
+    }
+    // Each lane's value of a quantity known at the nodes first … last (value[k − first]),
+    // interpolated to its index, v_λ = (1 − t_λ) v_h + t_λ v_{h+1}: each lane picks its two nodes'
+    // values as the nodes go by (a select, not an indexed load), so that every lane runs the same
+    // instructions, all at once (SIMD: the lanes' loop is kept a loop, for the compiler to
+    // vectorise it rather than the nodes' loop, which is mostly shorter than a vector).
+    std::array<float, N> interpolate(std::span<const float> value) const {
+      std::array<float, N> at_h{}, at_h1{}, v;
+      for (int k = first; k <= last; ++k) {
+        const float x = value[k - first];
+#pragma GCC unroll 1
+        for (int i = 0; i < N; ++i) {
+          at_h[i] = h[i] == k ? x : at_h[i];
+          at_h1[i] = h[i] + 1 == k ? x : at_h1[i];
+        }
+      }
+      for (int i = 0; i < N; ++i) v[i] = (1 - t[i]) * at_h[i] + t[i] * at_h1[i];
+      return v;
+    }
+  };
 
   static const SpecularAlbedo& table();
-  // E at one direction for several indices (one per lane) at once: the tables of the η nodes
-  // the lanes fall between are each read once, then every lane interpolates its own.
-  void E(const Direction& d, std::span<const Index> eta, bool compensated, std::span<float> out) const;
+  // E at one direction for each lane's index: the tables are read once at each node the lanes
+  // span, then every lane interpolates its own.
+  template <int N>
+  std::array<float, N> E(const Direction& d, const Lanes<N>& lanes, bool compensated) const {
+    std::array<float, N> e;
+    if (d.smooth) {
+      for (int i = 0; i < N; ++i) e[i] = fresnel_dielectric(d.mu, lanes.eta[i]);
+      return e;
+    }
+    std::array<float, albedo_tables::kEta> at_nodes;
+    E(d, lanes.first, lanes.last, compensated, at_nodes);
+    return lanes.interpolate(at_nodes);
+  }
   float E(float mu, const Roughness& r, float eta, bool compensated) const;
   float average(const Roughness& r, float eta, bool compensated) const;
-  // The averages for several indices (one per lane) at once, as E above.
-  void average(const Roughness& r, std::span<const Index> eta, bool compensated, std::span<float> out) const;
+  // The averages for each lane's index, as E above.
+  template <int N>
+  std::array<float, N> average(const Roughness& r, const Lanes<N>& lanes, bool compensated) const {
+    std::array<float, albedo_tables::kEta> at_nodes;
+    average(r, lanes.first, lanes.last, compensated, at_nodes);
+    return lanes.interpolate(at_nodes);
+  }
   float interface(float mu, const Roughness& r, float eta) const;
   float white(const Direction& d) const;
   float white(float mu, const Roughness& r) const;
   float white_average(const Roughness& r) const;
   float white_average(float alpha) const { return white_average(roughness(alpha)); }
+
+ private:
+  // E and E_avg at the η nodes first … last (into out[0 …]), for the lanes' interpolation.
+  void E(const Direction& d, int first, int last, bool compensated, std::span<float> out) const;
+  void average(const Roughness& r, int first, int last, bool compensated, std::span<float> out) const;
 };
 
 }  // namespace prism
