@@ -46,12 +46,7 @@ class TrowbridgeReitz {
 
   // Density of visible normals seen from w: D_w(m) = G1(w) |w·m| D(m) / |cos θ_w| (for w below
   // the surface, the normals visible from −w).
-  float D_visible(const Vec3f& w, const Vec3f& m) const { return D_visible(w, m, D(m)); }
-  // The same with D(m) known (a lobe that evaluates f and pdf at one m).
-  float D_visible(const Vec3f& w, const Vec3f& m, float D_m) const {
-    const float cos_w = std::abs(w.z);
-    return cos_w > 0 ? G1(w) * abs_dot(w, m) * D_m / cos_w : 0.f;
-  }
+  float D_visible(const Vec3f& w, const Vec3f& m) const { return D_visible(w, m, Facet{D(m), 0, G1(w)}); }
 
   // What a lobe's f and pdf share at one microfacet normal m (Tungsten's eval: one pass for both):
   // D(m), G(wo, wi) and G1(wo), Λ(wo) found once for the two.
@@ -62,7 +57,7 @@ class TrowbridgeReitz {
     const float lambda_o = lambda(wo);
     return {D(m), 1 / (1 + lambda_o + lambda(wi)), 1 / (1 + lambda_o)};
   }
-  // D_visible(wo, m) from the facet's terms.
+  // D_visible(wo, m) from the facet's terms (G unused).
   static float D_visible(const Vec3f& wo, const Vec3f& m, const Facet& t) {
     const float cos_w = std::abs(wo.z);
     return cos_w > 0 ? t.G1_o * abs_dot(wo, m) * t.D / cos_w : 0.f;
