@@ -500,9 +500,6 @@ def equal_error(a, harness, exrstats, assets_dir):
                   "%.2f; error at %d spp Prism/Cycles %.2f; time per sample Prism/Cycles %.2f"
                   % (target, top_c["spp"], top_c["seconds"], t_prism, " (extrapolated)" if extrapolated else "",
                      r["ratio"], top_c["spp"], r["error_ratio"], r["sample_time_ratio"]))
-            if r["ref_noise"] > UNRELIABLE:
-                print("  UNRELIABLE: the references' own noise is %.2f of the target error (above %.2f); raise "
-                      "--ref-spp for this asset" % (r["ref_noise"], UNRELIABLE))
             with open(os.path.join(work, "equal_error.json"), "w") as f:
                 json.dump(r, f)
             results.append(r)
@@ -523,18 +520,13 @@ def equal_error(a, harness, exrstats, assets_dir):
 
 EQUAL_ERROR_HEADER = ["asset", "size", "Cycles: spp, rel RMSE, s", "Prism s to that error", "equal-error time Prism/Cycles",
                       "rel RMSE at equal spp Prism/Cycles", "time per sample Prism/Cycles", "reference noise / target"]
-# Above this share of the target error a reference's own noise, though subtracted in the mean, makes the
-# measured error too uncertain (it is the variance of a difference of heavy-tailed images): the row is
-# flagged. LightsPunctualLamp's point-light peaks need 2 x 8192 spp to stay under it.
-UNRELIABLE = 0.25
 
 
 def write_equal_error_summary(a, results, failed):
     rows = [[r["asset"], r["size"], "%d, %.4f, %.2f" % (r["top_spp"], r["target"], r["t_cycles"]),
              "%.2f%s" % (r["t_prism"], " (extrap.)" if r["extrapolated"] else ""), "%.2f" % r["ratio"],
              "%.2f" % r["error_ratio"], "%.2f" % r["sample_time_ratio"],
-             "%.2f%s" % (r.get("ref_noise", float("nan")), " UNRELIABLE" if r.get("ref_noise", 0) > UNRELIABLE else "")]
-            for r in results]
+             "%.2f" % r.get("ref_noise", float("nan"))] for r in results]
     with open(os.path.join(a.out, "equal_error.md"), "w") as f:
         f.write("# Equal-error time, Prism vs Cycles\n\n%s, %d threads each, Prism `--max-depth %d`, references 2 x %d "
                 "spp with their noise subtracted, ladder %s spp.\n\n"
