@@ -1,7 +1,7 @@
 // Core utilities: transforms, frames, random numbers, warps.
 
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -221,6 +221,30 @@ TEST_CASE("the Sobol sampler's dimensions are uncorrelated: pixel jitter against
   const double p_value = 1 - test::regularized_gamma_p((kBins * kBins - 1) / 2.0, statistic / 2);
   INFO("chi2 " << statistic << " for " << kBins * kBins - 1 << " degrees of freedom, p " << p_value);
   CHECK(p_value > 1e-3);
+}
+
+TEST_CASE("a pixel started once gives each sample the values of that sample started alone") {
+  // The renderer calls start_pixel once per pixel and start_sample per sample: whatever the samples
+  // before drew (bounces, dimensions), sample s must see what start_pixel_sample(pixel, s) gives.
+  for (const SamplerKind kind : {SamplerKind::independent, SamplerKind::sobol})
+    for (const int replicate : {0, 1}) {
+      Sampler once(5, kind);
+      once.start_pixel({6, 2}, replicate);
+      for (int s = 0; s < 12; ++s) {
+        Sampler alone(5, kind);
+        alone.start_pixel_sample({6, 2}, s, replicate);
+        once.start_sample(s);
+        for (int bounce = 0; bounce < 3; ++bounce) {
+          INFO("sampler " << int(kind) << ", replicate " << replicate << ", sample " << s << ", bounce " << bounce);
+          const Vec2f a = once.get_2d(), b = alone.get_2d();
+          CHECK(a.x == b.x);
+          CHECK(a.y == b.y);
+          CHECK(once.get_1d() == alone.get_1d());
+          once.start_bounce(bounce);
+          alone.start_bounce(bounce);
+        }
+      }
+    }
 }
 
 TEST_CASE("samplers are deterministic per pixel and sample index") {

@@ -6,6 +6,7 @@
 #include "base/rng.h"
 #include "spectral/cie.h"
 #include "spectral/color_pipeline.h"
+#include "spectral/wavelengths.h"
 
 using namespace prism;
 
@@ -70,6 +71,29 @@ TEST_CASE("RGB albedo spectra stay between 0 and 1, and grey is exactly flat") {
   for (float v : {0.f, 0.18f, 0.5f, 1.f}) {
     const Spectrum s = RgbAlbedoSpectrum(Rgb{v, v, v});
     for (float l : {360.f, 550.f, 830.f}) CHECK(evaluate(s, l) == Approx(v).margin(1e-6));
+  }
+}
+
+TEST_CASE("RGB spectra at a path's wavelengths, all lanes at once, equal each lane's alone bit for bit") {
+  // sample<8> evaluates the sigmoid on all lanes at once (SIMD); it must round as one at a time,
+  // greys 0 and 1 (the sigmoid's clamped ends) included.
+  Rng rng(12, 0);
+  for (int i = 0; i < 100; ++i) {
+    const Rgb c = i == 0 ? Rgb{0, 0, 0} : i == 1 ? Rgb{1, 1, 1} : Rgb{rng.uniform(), rng.uniform(), rng.uniform()};
+    const auto lambda = SampledWavelengths<8>::sample({rng.uniform(), rng.uniform()});
+    for (const Spectrum& s : {Spectrum(RgbAlbedoSpectrum(c)), Spectrum(RgbUnboundedSpectrum(c * 3.f)),
+                              Spectrum(RgbIlluminantSpectrum(c)), Spectrum(RgbAbsorptionSpectrum(c, 2.f))}) {
+      const SampledSpectrum<8> lanes = sample(s, lambda);
+      for (int k = 0; k < 8; ++k) {
+        INFO("colour " << c[0] << " " << c[1] << " " << c[2] << ", kind " << s.index() << ", lane " << k);
+        CHECK(lanes[k] == evaluate(s, lambda[k]));
+      }
+    }
+  }
+  for (float v : {0.f, 1.f}) {
+    const auto lambda = SampledWavelengths<8>::sample({0.3f, 0.7f});
+    const SampledSpectrum<8> grey = sample(Spectrum(RgbAlbedoSpectrum(Rgb{v, v, v})), lambda);
+    for (int k = 0; k < 8; ++k) CHECK(grey[k] == v);
   }
 }
 
