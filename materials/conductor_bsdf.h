@@ -62,25 +62,18 @@ class ConductorBsdf {
 
   // f and pdf with one half vector m, one D(m) and one Λ(wo).
   BsdfEval<N> eval(Vec3f wo, Vec3f wi) const {
-    if (smooth_ || !same_hemisphere(wo, wi)) return {SampledSpectrum<N>(0.f), 0.f};
-    if (wo.z < 0) wo = -wo, wi = -wi;
-    const Vec3f m = wo + wi;
-    if (length_squared(m) == 0) return {SampledSpectrum<N>(0.f), 0.f};
-    const Vec3f wm = normalize(m);
-    const TrowbridgeReitz::Facet t = distribution_.facet(wo, wi, wm);
-    const SampledSpectrum<N> f = reflectance(dot(wo, wm)) * (t.D * t.G / (4 * wo.z * wi.z));
+    const auto wm = half_vector(wo, wi);
+    if (!wm) return {SampledSpectrum<N>(0.f), 0.f};
+    const TrowbridgeReitz::Facet t = distribution_.facet(wo, wi, *wm);
+    const SampledSpectrum<N> f = reflectance(dot(wo, *wm)) * (t.D * t.G / (4 * wo.z * wi.z));
     return {compensate_ ? f * multiple_scattering(wo.z) : f,
-            TrowbridgeReitz::D_visible(wo, wm, t) / (4 * abs_dot(wo, wm))};
+            TrowbridgeReitz::D_visible(wo, *wm, t) / (4 * abs_dot(wo, *wm))};
   }
 
   // Visible-normal sampling: pdf(wi) = D_wo(m) / (4 |wo·m|).
   float pdf(Vec3f wo, Vec3f wi) const {
-    if (smooth_ || !same_hemisphere(wo, wi)) return 0.f;
-    if (wo.z < 0) wo = -wo, wi = -wi;
-    const Vec3f m = wo + wi;
-    if (length_squared(m) == 0) return 0.f;
-    const Vec3f wm = normalize(m);
-    return distribution_.D_visible(wo, wm) / (4 * abs_dot(wo, wm));
+    const auto wm = half_vector(wo, wi);
+    return wm ? distribution_.D_visible(wo, *wm) / (4 * abs_dot(wo, *wm)) : 0.f;
   }
 
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float, Vec2f u) const {
@@ -99,6 +92,16 @@ class ConductorBsdf {
   }
 
  private:
+  // The reflection's half vector m = normalize(wo + wi), with wo and wi turned to the upper
+  // hemisphere; none for a smooth lobe, directions on opposite sides, or wo = −wi.
+  std::optional<Vec3f> half_vector(Vec3f& wo, Vec3f& wi) const {
+    if (smooth_ || !same_hemisphere(wo, wi)) return std::nullopt;
+    if (wo.z < 0) wo = -wo, wi = -wi;
+    const Vec3f m = wo + wi;
+    if (length_squared(m) == 0) return std::nullopt;
+    return normalize(m);
+  }
+
   // 1 + F0 (1 − E(μ)) / E(μ), F0 = ((n − 1)² + k²) / ((n + 1)² + k²) the normal reflectance.
   SampledSpectrum<N> multiple_scattering(float mu) const {
     const float e = SpecularAlbedo::table().white(mu, roughness_);
