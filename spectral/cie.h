@@ -44,18 +44,19 @@ Xyz to_xyz(const SampledSpectrum<N>& s, const SampledWavelengths<N>& lambda) {
   const CieTables& t = cie();
   const int last = int(t.xyz_rows.size()) - 1;
   // Each lane's weight S(λ)/p(λ), row and fraction first, all lanes at once (SIMD): a lane outside
-  // the rows or terminated (pdf 0) weighs 0·S. (Written so that the loop vectorises on AVX2 too: no
-  // branches or selects of a quotient, the division done on every lane, by at least 1e-30.)
+  // the rows or terminated (pdf 0) weighs 0, whatever its S (a terminated lane's may be anything).
+  // (Written so that the loop vectorises on AVX2 too: no branches or selects of a quotient, the
+  // division done on every lane, by at least 1e-30.)
   std::array<float, N> w, f;
   std::array<int, N> row;
   const float top = float(last);
   for (int i = 0; i < N; ++i) {
     const float u = lambda[i] - kLambdaMin, pdf = lambda.pdf()[i];
-    const float keep = (u >= 0.f) & (u <= top) & (pdf > 0.f) ? 1.f : 0.f;
+    const bool keep = (u >= 0.f) & (u <= top) & (pdf > 0.f);
     const float x = std::min(std::max(0.f, u), top);  // u where kept; NaN to 0
     row[i] = std::min(int(x), last - 1);
     f[i] = x - float(row[i]);
-    w[i] = keep * s[i] / std::max(pdf, 1e-30f);
+    w[i] = (keep ? s[i] : 0.f) / std::max(pdf, 1e-30f);
   }
   // Then x̄, ȳ, z̄ linear between the 1-nm rows, one 4-float row pair per lane.
   Float4 sum{0, 0, 0, 0};

@@ -1,6 +1,7 @@
 // Colour: spectra to XYZ, the OCIO pipeline to output spaces, and RGB -> spectrum -> RGB.
 
 #include <catch2/catch.hpp>
+#include <limits>
 
 #include "base/error.h"
 #include "base/rng.h"
@@ -95,6 +96,21 @@ TEST_CASE("RGB spectra at a path's wavelengths, all lanes at once, equal each la
     const SampledSpectrum<8> grey = sample(Spectrum(RgbAlbedoSpectrum(Rgb{v, v, v})), lambda);
     for (int k = 0; k < 8; ++k) CHECK(grey[k] == v);
   }
+}
+
+TEST_CASE("to_xyz ignores what a terminated lane carries, NaN and infinity included") {
+  // Past a dispersive interface only the hero lane is followed (its pdf alone non-zero); the other
+  // lanes' values are left as they were and must not reach the pixel.
+  auto lambda = SampledWavelengths<8>::sample({0.4f, 0.6f});
+  lambda.terminate_secondary();
+  SampledSpectrum<8> clean(0.f), dirty(std::numeric_limits<float>::quiet_NaN());
+  clean[0] = dirty[0] = 2.f;
+  dirty[1] = std::numeric_limits<float>::infinity();
+  const Xyz a = to_xyz(clean, lambda), b = to_xyz(dirty, lambda);
+  REQUIRE(a.y > 0);
+  CHECK(b.x == a.x);
+  CHECK(b.y == a.y);
+  CHECK(b.z == a.z);
 }
 
 TEST_CASE("RGB illuminant and unbounded spectra reproduce their colour") {
