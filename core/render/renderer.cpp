@@ -109,29 +109,28 @@ VcmIteration<N> trace_iteration(const BdptScene& scene, const RenderOptions& opt
 
 // The body of the render: sample s of a pixel, from the sampler's stream for (pixel, s, seed)
 // alone (the sampler started at the pixel), through the camera and the radiance estimator to CIE XYZ.
-// With a sky (sky_xyz), the camera ray is traced here first.
+// With a sky (sky_xyz), the camera ray is traced here first, and a ray that leaves the scene at
+// once returns nothing: its value is the sky's.
 template <int N>
-CameraSample<N> camera_sample(const World& world, const Camera& camera, const RenderOptions& options,
-                              RadianceFn<N> radiance, const std::optional<Xyz>& sky, Splatting<N>& bdpt,
-                              Sampler& sampler, Vec2i pixel, int s, RayCounters& rays) {
+std::optional<CameraSample<N>> camera_sample(const World& world, const Camera& camera, const RenderOptions& options,
+                                             RadianceFn<N> radiance, const std::optional<Xyz>& sky, Splatting<N>& bdpt,
+                                             Sampler& sampler, Vec2i pixel, int s, RayCounters& rays) {
   sampler.start_sample(s);
   const Vec2f jitter = sampler.get_2d();
-  CameraSample<N> c{};
-  c.ray = camera.generate_ray(float(pixel.x) + jitter.x, float(pixel.y) + jitter.y);
-  std::optional<SurfaceInteraction> first;
-  if (sky) {
-    first = world.intersect(c.ray, true);  // as path_radiance would
-    if (!first) {
-      ++rays.primary;
-      c.xyz = *sky;
-      return c;
-    }
+  const Ray ray = camera.generate_ray(float(pixel.x) + jitter.x, float(pixel.y) + jitter.y);
+  const std::optional<SurfaceInteraction> first =
+      sky ? world.intersect(ray, true) : std::nullopt;  // as path_radiance would
+  if (sky && !first) {
+    ++rays.primary;
+    return std::nullopt;
   }
   const Vec2f u_lambda = sampler.get_2d();  // the camera's second dimension, drawn only for a path that needs it
+  CameraSample<N> c;
+  c.ray = ray;
   c.lambda = bdpt.lambda ? *bdpt.lambda : SampledWavelengths<N>::sample(u_lambda);
-  c.L = bdpt.scene ? bdpt_radiance<N>(*bdpt.scene, c.ray, c.lambda, sampler, options.path, bdpt.vcm, *bdpt.splats, rays,
+  c.L = bdpt.scene ? bdpt_radiance<N>(*bdpt.scene, ray, c.lambda, sampler, options.path, bdpt.vcm, *bdpt.splats, rays,
                                       bdpt.invalid)
-                   : radiance(world, c.ray, c.lambda, sampler, options.path, rays, sky ? &first : nullptr);
+                   : radiance(world, ray, c.lambda, sampler, options.path, rays, sky ? &first : nullptr);
   c.xyz = to_xyz(c.L, c.lambda);
   return c;
 }
@@ -179,19 +178,27 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
       // not in bidirectional renders, whose light paths must be one per sample index).
       const int replicates = !bdpt.scene && replicated_pixel({x, y}, options.seed) ? 2 : 1;
       const int64_t first = int64_t(options.sample_begin + film.samples(p)) * replicates;
+      // The samples that saw the sky (camera_sample), per replicate: added together at the end.
+      uint32_t sky_samples[2] = {0, 0};
       for (int64_t k = first; k < int64_t(end) * replicates; ++k) {
         const int s = int(k / replicates), r = int(k % replicates);
         if (replicates > 1 || k == first) sampler.start_pixel({x, y}, r);
-        const CameraSample<N> c =
+        const std::optional<CameraSample<N>> c =
             camera_sample<N>(world, camera, options, radiance, sky, bdpt, sampler, {x, y}, s, stats.rays);
-        FilmSample fs{c.xyz};
-        if (first_hits) first_hit<N>(world, c.ray, c.lambda, fs);
         ++stats.samples;
+        if (!c) {
+          ++sky_samples[r];
+          continue;
+        }
+        FilmSample fs{c->xyz};
+        if (first_hits) first_hit<N>(world, c->ray, c->lambda, fs);
         if (!film.add(p, fs, r)) ++stats.invalid;
         if (bins)
           for (int i = 0; i < N; ++i)
-            if (c.lambda.pdf()[i] > 0) film.add_spectral(p, c.lambda[i], double(c.L[i]) / (c.lambda.pdf()[i] * N));
+            if (c->lambda.pdf()[i] > 0) film.add_spectral(p, c->lambda[i], double(c->L[i]) / (c->lambda.pdf()[i] * N));
       }
+      for (int r = 0; r < 2; ++r)
+        if (sky_samples[r] > 0 && !film.add_repeated(p, *sky, sky_samples[r], r)) stats.invalid += sky_samples[r];
     }
   stats.invalid += bdpt.invalid;
 }
