@@ -102,6 +102,24 @@ TEST_CASE("uniform triangle barycentrics cover the triangle evenly") {
   CHECK(double(in_corner) / n == Approx(0.25).margin(0.01));
 }
 
+TEST_CASE("reverse_bits moves bit i to bit 31 - i (the run-time path, GFNI where the build has it)") {
+  const auto reversed_by_loop = [](uint32_t v) {
+    uint32_t r = 0;
+    for (int i = 0; i < 32; ++i) r |= (v >> i & 1u) << (31 - i);
+    return r;
+  };
+  static_assert(sobol::reverse_bits(1u) == 0x80000000u && sobol::reverse_bits(0x12345678u) == 0x1e6a2c48u);
+  Rng rng(7, 0);
+  volatile uint32_t fixed[] = {0u, 1u, 0x80000000u, 0xffffffffu, 0x12345678u, 0x0000ff00u};
+  for (uint32_t v : fixed) CHECK(sobol::reverse_bits(v) == reversed_by_loop(v));
+  int wrong = 0;
+  for (int i = 0; i < 100000; ++i) {
+    const uint32_t v = rng.next_u32();
+    wrong += sobol::reverse_bits(v) != reversed_by_loop(v);
+  }
+  CHECK(wrong == 0);
+}
+
 TEST_CASE("the Sobol sampler stratifies each dimension over a pixel's samples") {
   // With 2^k samples, every 1D request hits each of the 2^k strata exactly once, and every 2D
   // request each of the 2^(k/2) x 2^(k/2) cells (a (0,2)-net), in every dimension and pixel.
