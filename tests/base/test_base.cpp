@@ -241,6 +241,23 @@ TEST_CASE("the Sobol sampler's dimensions are uncorrelated: pixel jitter against
   CHECK(p_value > 1e-3);
 }
 
+TEST_CASE("skip_2d moves a sampler on exactly as a get_2d would") {
+  // The renderer draws a batch of samples' pixel jitter first, then each sample skips it.
+  for (const SamplerKind kind : {SamplerKind::independent, SamplerKind::sobol})
+    for (int s = 0; s < 9; ++s) {
+      Sampler drawn(11, kind), skipped(11, kind);
+      drawn.start_pixel_sample({3, 4}, s);
+      skipped.start_pixel_sample({3, 4}, s);
+      drawn.get_2d();
+      skipped.skip_2d();
+      INFO("sampler " << int(kind) << ", sample " << s);
+      const Vec2f a = drawn.get_2d(), b = skipped.get_2d();
+      CHECK(a.x == b.x);
+      CHECK(a.y == b.y);
+      CHECK(drawn.get_1d() == skipped.get_1d());
+    }
+}
+
 TEST_CASE("a pixel started once gives each sample the values of that sample started alone") {
   // The renderer calls start_pixel once per pixel and start_sample per sample: whatever the samples
   // before drew (bounces, dimensions), sample s must see what start_pixel_sample(pixel, s) gives.
