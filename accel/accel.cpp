@@ -184,8 +184,13 @@ bool Accel::intersect(const Ray& ray, AccelHit& hit) const {
   Closest closest{ray.tmax};
   if (!trace<false>(ray, closest)) return false;
   uint32_t instance = closest.instance;
-  if (instance == kWorld)
-    instance = uint32_t(std::upper_bound(first_prim_.begin(), first_prim_.end(), closest.id) - first_prim_.begin() - 1);
+  if (instance == kWorld) {
+    // The last instance whose first triangle is at most id: a binary search whose steps are
+    // selects, not branches (std::upper_bound's mispredict about every other step).
+    const uint32_t* first = first_prim_.data();
+    for (size_t n = first_prim_.size(); n > 1; n -= n / 2) first = first[n / 2] <= closest.id ? first + n / 2 : first;
+    instance = uint32_t(first - first_prim_.data());
+  }
   const TriangleHit& h = closest.hit;
   hit = {h.t, h.b0, h.b1, h.b2, instance, closest.id - first_prim_[instance], {}};
   for (int k = 0; k < 3; ++k) {
