@@ -5,13 +5,18 @@
 #include <algorithm>
 
 #include "accel/bvh_traverse.h"
-#include "accel/triangle_split.h"
 
 namespace prism {
 
 namespace {
 
 using Triangle = std::array<Vec3f, 3>;
+
+// A triangle with zero area, or beyond float range, can never be hit; it stays out of the trees.
+bool hittable(const Triangle& v) {
+  const float area = triangle_area(v[0], v[1], v[2]);
+  return area > 0.f && std::isfinite(area);
+}
 
 // World-space box of a box under an affine transform, rounded outwards, and padded by a little
 // more than the rounding of a ray transformed into the instance's space, so that the world tree
@@ -37,15 +42,14 @@ Bounds3f transform_bounds(const AffineTransform& m, const Bounds3f& b) {
 }  // namespace
 
 Accel::TriangleTree::TriangleTree(const std::vector<Triangle>& triangles, std::span<const uint32_t> ids,
-                                  float split_budget, std::span<const Bounds3f> solo_bounds) {
-  PrimitiveBoxes boxes = split_triangles(triangles, split_budget);
-  for (uint32_t i = 0; i < solo_bounds.size(); ++i) {
-    boxes.bounds.push_back(solo_bounds[i]);
-    boxes.prims.push_back(uint32_t(triangles.size()) + i);
-  }
+                                  std::vector<Bounds3f> bounds) {
+  if (bounds.empty()) bounds.resize(triangles.size());
+  tbb::parallel_for(size_t(0), triangles.size(), [&](size_t i) {
+    if (!hittable(triangles[i])) return;
+    for (const Vec3f& v : triangles[i]) bounds[i].extend(v);
+  });
   std::vector<uint32_t> slots;
-  bvh = Bvh::build(boxes.bounds, boxes.prims,
-                   {.block_size = TriangleBlock::kLanes, .first_solo = uint32_t(triangles.size())}, slots);
+  bvh = Bvh::build(bounds, {.block_size = TriangleBlock::kLanes, .first_solo = uint32_t(triangles.size())}, slots);
   blocks.resize(slots.size() / TriangleBlock::kLanes);
   tbb::parallel_for(size_t(0), blocks.size(), [&](size_t b) {
     for (int lane = 0; lane < TriangleBlock::kLanes; ++lane) {
@@ -88,7 +92,7 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
   // One tree per shared mesh, in object space; each instance of it a solo leaf of the world tree,
   // numbered as the instance.
   tree_of_mesh_.assign(meshes.size(), -1);
-  std::vector<Bounds3f> solo_bounds(instances.size());  // empty for the instances copied into the world tree
+  std::vector<Bounds3f> bounds(world_count + instances.size());  // the world tree's triangles, then solos
   for (uint32_t mesh = 0; mesh < meshes.size(); ++mesh) {
     if (users[mesh] < 2 || options.flatten_instances) continue;
     tree_of_mesh_[mesh] = int(mesh_trees_.size());
@@ -98,16 +102,16 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
       for (int k = 0; k < 3; ++k) triangles[p][k] = meshes[mesh].positions[meshes[mesh].indices[3 * p + k]];
       ids[p] = p;
     }
-    mesh_trees_.emplace_back(triangles, ids, options.split_budget);
+    mesh_trees_.emplace_back(triangles, ids);
   }
   if (!mesh_trees_.empty()) to_object_.assign(instances.size(), Transform{{}});
   tbb::parallel_for(size_t(0), instances.size(), [&](size_t i) {
     if (!shared(instances[i])) return;
     to_object_[i] = instances[i].to_world.inverse();
     const Bvh& tree = mesh_trees_[tree_of_mesh_[instances[i].mesh]].bvh;
-    if (!tree.empty()) solo_bounds[i] = transform_bounds(instances[i].to_world, tree.bounds());
+    if (!tree.empty()) bounds[world_count + i] = transform_bounds(instances[i].to_world, tree.bounds());
   });
-  world_ = TriangleTree(world_triangles, world_ids, options.split_budget, solo_bounds);
+  world_ = TriangleTree(world_triangles, world_ids, std::move(bounds));
 }
 
 struct Accel::Closest {

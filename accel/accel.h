@@ -33,9 +33,6 @@ struct AccelOptions {
   // Test every triangle for every query, without the trees: the reference the tests hold the
   // BVH to, bit for bit (same triangles in the same spaces, same triangle test).
   bool brute_force = false;
-  // Further boxes for the triangles whose box fits them badly, as a fraction of the triangle
-  // count (accel/triangle_split.h): a tighter tree for some more memory and build time.
-  float split_budget = 0.3f;
 };
 
 struct AccelHit {
@@ -74,9 +71,9 @@ class Accel {
     Bvh bvh;
     std::vector<TriangleBlock, HugePageAllocator<TriangleBlock>> blocks;
     TriangleTree() = default;
-    // `solo_bounds`: the solo leaves' boxes, numbered after the triangles.
-    TriangleTree(const std::vector<std::array<Vec3f, 3>>& triangles, std::span<const uint32_t> ids, float split_budget,
-                 std::span<const Bounds3f> solo_bounds = {});
+    // `bounds`: one box per triangle (filled here), then the solo leaves' boxes (the caller's).
+    TriangleTree(const std::vector<std::array<Vec3f, 3>>& triangles, std::span<const uint32_t> ids,
+                 std::vector<Bounds3f> bounds = {});
     size_t memory_bytes() const { return bvh.memory_bytes() + blocks.size() * sizeof(TriangleBlock); }
   };
   struct Closest;

@@ -94,12 +94,10 @@ class Bvh {
   static constexpr uint32_t kEmptySlot = 0xFFFFFFFF;
 
   Bvh() = default;
-  // Builds over the boxes that are not empty; box i belongs to primitive prims[i], and a primitive
-  // may have several (a leaf lists it once however many reach it). `slots` receives them in the order
+  // Builds over the primitives whose bounds are not empty. `slots` receives them in the order
   // the leaves list them: block after block of options.block_size slots, unused ones kEmptySlot.
   // Solo primitives are not in `slots`: their leaves name them (minus options.first_solo).
-  static Bvh build(std::span<const Bounds3f> bounds, std::span<const uint32_t> prims, const BvhBuildOptions& options,
-                   std::vector<uint32_t>& slots);
+  static Bvh build(std::span<const Bounds3f> prim_bounds, const BvhBuildOptions& options, std::vector<uint32_t>& slots);
 
   bool empty() const { return root_ == kNoRoot; }
   Bounds3f bounds() const { return bounds_; }

@@ -256,15 +256,10 @@ class BvhBuilder {
       const uint32_t prim = refs_[begin].prim();
       if (prim >= options_.first_solo) return bvh_ref::solo(prim - options_.first_solo);
       const uint32_t first_block = uint32_t(slots.size()) / options_.block_size;
-      // Each primitive once, though several of its boxes (pieces of a split triangle) reached the leaf.
-      uint32_t unique = 0;
-      for (uint32_t i = 0; i < n; ++i) {
-        const uint32_t p = refs_[begin + i].prim();
-        if (std::find(slots.end() - unique, slots.end(), p) == slots.end()) slots.push_back(p), ++unique;
-      }
-      if (first_block + blocks(unique) > bvh_ref::kMaxIndex) fail("BVH: more than {} leaf blocks", bvh_ref::kMaxIndex);
-      slots.resize(size_t(first_block + blocks(unique)) * options_.block_size, Bvh::kEmptySlot);
-      return bvh_ref::leaf(first_block, blocks(unique));
+      if (first_block + blocks(n) > bvh_ref::kMaxIndex) fail("BVH: more than {} leaf blocks", bvh_ref::kMaxIndex);
+      for (uint32_t i = 0; i < n; ++i) slots.push_back(refs_[begin + i].prim());
+      slots.resize(size_t(first_block + blocks(n)) * options_.block_size, Bvh::kEmptySlot);
+      return bvh_ref::leaf(first_block, blocks(n));
     }
     const TempNode& temp = nodes_[ref];
     const uint32_t index = uint32_t(bvh.nodes_.size());
@@ -290,19 +285,18 @@ class BvhBuilder {
   std::atomic<uint32_t> node_count_{0};
 };
 
-Bvh Bvh::build(std::span<const Bounds3f> bounds, std::span<const uint32_t> prims, const BvhBuildOptions& options,
-               std::vector<uint32_t>& slots) {
+Bvh Bvh::build(std::span<const Bounds3f> prim_bounds, const BvhBuildOptions& options, std::vector<uint32_t>& slots) {
   std::vector<PrimRef> refs;
-  refs.reserve(bounds.size());
+  refs.reserve(prim_bounds.size());
   Range root{0, 0, {}, {}};
-  for (size_t i = 0; i < bounds.size(); ++i) {
-    const Bounds3f& b = bounds[i];
+  for (uint32_t i = 0; i < prim_bounds.size(); ++i) {
+    const Bounds3f& b = prim_bounds[i];
     if (b.empty()) continue;
-    PrimRef r{{b.lo.x, b.lo.y, b.lo.z, std::bit_cast<float>(prims[i])}, {b.hi.x, b.hi.y, b.hi.z, 0.f}};
+    PrimRef r{{b.lo.x, b.lo.y, b.lo.z, std::bit_cast<float>(i)}, {b.hi.x, b.hi.y, b.hi.z, 0.f}};
     refs.push_back(r);
     root.bounds.extend(Box{r.lo, r.hi});
     root.centroids.extend(r.centroid2());
-    root.solos += prims[i] >= options.first_solo;
+    root.solos += i >= options.first_solo;
   }
   root.end = uint32_t(refs.size());
   slots.clear();

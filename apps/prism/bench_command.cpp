@@ -98,10 +98,6 @@ void add_bench_command(CLI::App& app) {
   cmd->add_flag("--occluded", args->occluded, "Any-hit (shadow) queries instead of closest hit");
   cmd->add_flag("--flatten", args->accel.flatten_instances,
                 "Copy shared meshes into the world-space BVH instead of instancing them");
-  cmd->add_option("--split-budget", args->accel.split_budget,
-                  "Extra BVH boxes for badly fitting triangles, as a fraction of the triangle count (0: none)")
-      ->default_val(AccelOptions{}.split_budget)
-      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--hits", args->hits, "Write the last pass's results in raybench's HITS.bin format");
   cmd->callback([args] { run(*args); });
   add_bench_features_command(bench);
