@@ -104,14 +104,22 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
     }
     mesh_trees_.emplace_back(triangles, ids);
   }
-  if (!mesh_trees_.empty()) to_object_.assign(instances.size(), Transform{{}});
   tbb::parallel_for(size_t(0), instances.size(), [&](size_t i) {
     if (!shared(instances[i])) return;
-    to_object_[i] = instances[i].to_world.inverse();
     const Bvh& tree = mesh_trees_[tree_of_mesh_[instances[i].mesh]].bvh;
     if (!tree.empty()) bounds[world_count + i] = transform_bounds(instances[i].to_world, tree.bounds());
   });
   world_ = TriangleTree(world_triangles, world_ids, std::move(bounds));
+
+  // The instances' inverse transforms, kept where they cost at most an eighth of the trees (a
+  // vase's flowers); a forest of a million instances of one tree inverts each on entry instead.
+  size_t tree_bytes = world_.memory_bytes();
+  for (const TriangleTree& t : mesh_trees_) tree_bytes += t.memory_bytes();
+  if (mesh_trees_.empty() || instances.size() * sizeof(Transform) > tree_bytes / 8) return;
+  to_object_.resize(instances.size());
+  tbb::parallel_for(size_t(0), instances.size(), [&](size_t i) {
+    if (shared(instances[i])) to_object_[i] = instances[i].to_world.inverse();
+  });
 }
 
 struct Accel::Closest {
@@ -155,7 +163,7 @@ bool Accel::trace(const Ray& ray, Closest& closest) const {
   };
   const auto enter = [&](uint32_t instance) {
     const TriangleTree& tree = mesh_trees_[tree_of_mesh_[instances_[instance].mesh]];
-    const Transform& to_object = to_object_[instance];
+    const Transform to_object = to_object_.empty() ? instances_[instance].to_world.inverse() : to_object_[instance];
     if (to_object.m[3][3] == 0) return false;  // singular: a flat instance nothing hits
     // In the mesh's space the direction is not unit length, so t stays the world-space distance.
     const Ray object_ray{Vec3f(to_object.point(Vec3d(ray.o))), Vec3f(to_object.vector(Vec3d(ray.d))), ray.tmax};

@@ -6,7 +6,8 @@
 // into one world-space BVH (the fastest to trace); a mesh shared by several instances gets one
 // BVH in its own space, and each of its instances enters the world BVH as a leaf of its own,
 // which the ray crosses into the mesh's space through the instance's inverse transform (computed
-// once, 128 bytes per instance; the instances' own array is read while tracing). Queries are
+// once where that costs little beside the trees, else on entry, so that millions of instances stay
+// small; the instances' own array is read while tracing). Queries are
 // exact functions of the geometry: the closest hit is the one with the smallest t, and among
 // equally close ones the smallest global_prim, whatever the trees' shapes or visiting order.
 
@@ -86,9 +87,9 @@ class Accel {
   TriangleTree world_;
   std::vector<TriangleTree> mesh_trees_;
   std::span<const Instance> instances_;
-  // Per instance, the inverse of its transform if its mesh is shared (all zeros otherwise, or when
-  // singular; none at all without shared meshes): computed once here rather than on every ray
-  // that enters the instance.
+  // Per instance, the inverse of its transform if its mesh is shared (all zeros when singular);
+  // empty without shared meshes, or when the inverses would cost more than an eighth of the trees
+  // (a forest of instances: Accel::trace then inverts on entering an instance).
   std::vector<Transform> to_object_;
   std::vector<int> tree_of_mesh_;  // into mesh_trees_, or −1 for a mesh flattened into world_
   std::vector<uint32_t> first_prim_;

@@ -369,6 +369,47 @@ TEST_CASE("shared meshes traced through their instances' transforms") {
   CHECK(prim_differs <= hits / 1000);
 }
 
+TEST_CASE("a forest of instances of a small mesh, with empty instances among them") {
+  Rng rng(7, 0);
+  TestScene scene;
+  scene.meshes = {random_triangles(3, rng), Soup{}, random_triangles(20, rng)};  // shared, empty, flattened
+  for (int i = 0; i < 400; ++i) {
+    const Vec3f at = random_in(rng, -8, 8);
+    scene.instances.push_back({0, Transform::translate(Vec3d(at)) * Transform::rotate(0.5, 0.5, 0.5, 0.5) *
+                                      Transform::scale({0.5, 0.5, i % 2 ? 0.5 : -0.5})});
+    // Empty instances between the others: the same first triangle number as the next one.
+    if (i % 100 == 0) scene.instances.push_back({1, Transform{}});
+    if (i == 200) scene.instances.push_back({2, Transform{}});
+  }
+  const Accel accel = scene.build();
+  // Too many instances for their inverses to be kept beside so small a tree: each is inverted
+  // on entry, and the whole accel stays smaller than the inverses alone would be.
+  CHECK(accel.memory_bytes() < scene.instances.size() * sizeof(Transform));
+  const Accel reference = scene.build({.brute_force = true});
+  const BruteForce brute_force(scene.world_triangles());
+  // Global triangle number -> (instance, triangle), counted here independently of the accel.
+  std::vector<std::pair<uint32_t, uint32_t>> owner;
+  for (uint32_t i = 0; i < scene.instances.size(); ++i)
+    for (uint32_t p = 0; p < scene.meshes[scene.instances[i].mesh].indices.size() / 3; ++p) owner.push_back({i, p});
+  int hits = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Ray ray = random_ray(rng);
+    INFO(describe(ray));
+    AccelHit hit, ref;
+    const bool got = accel.intersect(ray, hit);
+    REQUIRE(got == reference.intersect(ray, ref));
+    REQUIRE(accel.occluded(ray) == got);
+    if (!got) continue;
+    ++hits;
+    REQUIRE(hit.t == ref.t);
+    const uint32_t global = accel.global_prim(hit);
+    REQUIRE(global == reference.global_prim(ref));
+    REQUIRE(owner[global] == std::pair(hit.instance, hit.prim));
+    for (int k = 0; k < 3; ++k) REQUIRE(hit.v[k] == brute_force.triangle(global)[k]);
+  }
+  CHECK(hits > 500);
+}
+
 TEST_CASE("instances number their triangles instance by instance") {
   Rng rng(5, 0);
   // Coordinates on a 1/1024 grid, so that the translated copy and the translated rays are exact.
