@@ -15,7 +15,7 @@
 // i.e. the throughput divided, at each vertex, by the lanes' pdfs of its direction averaged with
 // the weights q_j = the path's pdf under lane j so far:  p̄ = Σ_j q_j p_j(ω) / Σ_j q_j; the
 // product of the p̄ telescopes to (1/N) Σ_j p_j. `pdf` in eval and sample_f is that p̄, and MIS
-// against light sampling uses it too (the power heuristic on p̄ and the light's λ-independent pdf):
+// against light sampling uses it too (the balance heuristic on p̄ and the light's λ-independent pdf):
 // the weights of the 2N techniques, N heroes × {BSDF, light}, then sum to 1 on every path.
 // A delta sample of the hero (a smooth refraction, but also a smooth reflection or a smooth coat's
 // lobe) is given pdf 0 and f 0 under every other lane: the path goes on with the hero alone,

@@ -79,11 +79,10 @@ inline SinCos sin_cos(float x) {
   return {n & 2 ? -sin_r : sin_r, (n + 1) & 2 ? -cos_r : cos_r};
 }
 
-// Balance heuristic with β = 2 (Veach 1997, §9.2.3): weight of a sample from f among f and g.
-inline float power_heuristic(float pdf_f, float pdf_g) {
-  const float f = pdf_f * pdf_f, g = pdf_g * pdf_g;
-  if (std::isinf(f)) return 1.f;
-  return f + g > 0.f ? f / (f + g) : 0.f;
+// Balance heuristic (Veach 1997, §9.2.2): weight of a sample from f among f and g.
+inline float balance_heuristic(float pdf_f, float pdf_g) {
+  if (std::isinf(pdf_f)) return 1.f;
+  return pdf_f + pdf_g > 0.f ? pdf_f / (pdf_f + pdf_g) : 0.f;
 }
 
 }  // namespace prism

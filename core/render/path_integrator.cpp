@@ -24,7 +24,7 @@ SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& s
   const auto c = light_contribution(world, si, frame, bsdf, wo, light, u, lambda, counters, reflect_axis, &sky);
   if (!c || pmf == 0.f) return SampledSpectrum<N>(0.f);
   const float light_pdf = pmf * c->light_pdf;
-  const float weight = is_delta(light) ? 1.f : power_heuristic(light_pdf, c->bsdf_pdf);
+  const float weight = is_delta(light) ? 1.f : balance_heuristic(light_pdf, c->bsdf_pdf);
   return c->f_L * (weight / light_pdf);
 }
 
@@ -83,7 +83,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
         L += beta * Le;
       } else {
         const float light_pdf = light_sampler.pmf(uint32_t(light)) * light_pdf_solid_angle();
-        L += beta * Le * power_heuristic(bsdf_pdf_prev, light_pdf);
+        L += beta * Le * balance_heuristic(bsdf_pdf_prev, light_pdf);
       }
     };
 

@@ -1,6 +1,6 @@
 #pragma once
 // Unidirectional path tracing over a path's sampled wavelengths, with next-event estimation
-// and multiple importance sampling of light and BSDF samples (power heuristic; Veach 1997,
+// and multiple importance sampling of light and BSDF samples (balance heuristic; Veach 1997,
 // ch. 9), and Russian roulette on the path throughput (Arvo & Kirk 1990).
 
 #include "base/sampler.h"

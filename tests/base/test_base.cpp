@@ -12,6 +12,7 @@
 #include "base/sampler.h"
 #include "base/transform.h"
 #include "base/warp.h"
+#include "render/russian_roulette.h"
 #include "support/chi2.h"
 
 using namespace prism;
@@ -86,6 +87,36 @@ TEST_CASE("cosine hemisphere samples have the density they report") {
     sum += w.z * w.z / cosine_hemisphere_pdf(w.z);
   }
   CHECK(sum / n == Approx(2 * kPi / 3).epsilon(0.01));
+}
+
+TEST_CASE("the balance heuristic's weights of two strategies sum to 1, an infinite pdf takes all, zero pdfs none") {
+  for (const auto& [a, b] : {std::pair{1.f, 1.f}, {0.2f, 7.f}, {1e-30f, 3.f}, {5e20f, 2e19f}, {0.f, 2.f}}) {
+    INFO(a << " " << b);
+    CHECK(balance_heuristic(a, b) + balance_heuristic(b, a) == Approx(1));
+    CHECK(balance_heuristic(a, b) == Approx(a / (a + b)));
+  }
+  CHECK(balance_heuristic(1, 1) == 0.5f);
+  CHECK(balance_heuristic(INFINITY, 3) == 1);
+  CHECK(balance_heuristic(0, 0) == 0);
+}
+
+TEST_CASE(
+    "Russian roulette leaves a path alone until its throughput halves, then continues with probability sqrt(2t)") {
+  for (const float t : {0.5f, 0.75f, 1.f, 3.f, INFINITY, NAN}) CHECK(roulette_termination(t) == 0);
+  for (const float t : {1e-6f, 0.02f, 0.125f, 0.3f, 0.49f}) {
+    INFO(t);
+    const float q = roulette_termination(t);
+    CHECK(1 - q == Approx(std::sqrt(2 * t)).epsilon(1e-4));  // 1 - q rounded in float
+    CHECK(q < 1);  // a path that survives is divided by 1 - q: the estimate stays unbiased
+  }
+  CHECK(roulette_termination(0) == 1);  // nothing left to carry
+  // Unbiased: survivors divided by 1 - q carry on average what the path carried.
+  Rng rng(3, 0);
+  const float q = roulette_termination(0.08f);
+  double sum = 0;
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) sum += rng.uniform() < q ? 0.0 : 1.0 / (1 - q);
+  CHECK(sum / n == Approx(1).epsilon(0.01));
 }
 
 TEST_CASE("uniform triangle barycentrics cover the triangle evenly") {
