@@ -45,10 +45,9 @@ class ConductorBsdf {
     if constexpr (Extensions)
       if (film_)
         return film_->reflectance(std::abs(cos_theta), [&](int i) { return std::complex<float>(n_[i], k_[i]); });
-    // Lanes of the same n, k (a grey metal has them all) share one evaluation.
+    // All lanes at once, as vector code (fresnel_conductor has no branches).
     SampledSpectrum<N> r;
-    for (int i = 0; i < N; ++i)
-      r[i] = i > 0 && n_[i] == n_[i - 1] && k_[i] == k_[i - 1] ? r[i - 1] : fresnel_conductor(cos_theta, n_[i], k_[i]);
+    for (int i = 0; i < N; ++i) r[i] = fresnel_conductor(cos_theta, n_[i], k_[i]);
     return r;
   }
 

@@ -78,14 +78,17 @@ inline float fresnel_dielectric(float cos_theta_i, float eta) {
 //   R⊥ = (a² + b² − 2a cos θ + cos²θ) / (a² + b² + 2a cos θ + cos²θ),
 //   R∥ = R⊥ (cos²θ (a² + b²) − 2a cos θ sin²θ + sin⁴θ) / (cos²θ (a² + b²) + 2a cos θ sin²θ + sin⁴θ).
 // A vanishing denominator (grazing onto an index-matched k = 0 surface) is the grazing limit, R = 1.
+// Branch-free (selects, not jumps), so that a loop over a spectrum's lanes runs as vector code.
 inline FresnelReflectance fresnel_conductor_polarized(float cos_theta_i, float n, float k) {
-  if (n == 0 && k == 0) return {1, 1, 1};  // η = 0: the ideal-conductor limit
   const double c = std::min(1.0, std::abs(double(cos_theta_i))), c2 = c * c, s2 = 1 - c2;
   const double n2 = double(n) * n, k2 = double(k) * k, t0 = n2 - k2 - s2;
   const double a2b2 = std::sqrt(t0 * t0 + 4 * n2 * k2), a = std::sqrt(std::max(0.0, (a2b2 + t0) / 2));
   const double t1 = a2b2 + c2, t2 = 2 * c * a, t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
-  const double Rs = t1 + t2 == 0 ? 1.0 : std::min(1.0, (t1 - t2) / (t1 + t2));
-  const double Rp = t3 + t4 == 0 ? 1.0 : std::min(1.0, Rs * (t3 - t4) / (t3 + t4));
+  const bool ideal = (n == 0) & (k == 0);  // η = 0: the ideal-conductor limit, R = 1
+  const double rs = std::min(1.0, (t1 - t2) / (t1 + t2));
+  const double Rs = ideal | (t1 + t2 == 0) ? 1.0 : rs;
+  const double rp = std::min(1.0, Rs * (t3 - t4) / (t3 + t4));
+  const double Rp = ideal | (t3 + t4 == 0) ? 1.0 : rp;
   return {float((Rs + Rp) / 2), float(Rs), float(Rp)};
 }
 
