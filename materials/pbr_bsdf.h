@@ -59,21 +59,16 @@ class PbrBsdf {
         eta_(eta),
         specular_(specular),
         compensated_(compensated),
-        roughness_(SpecularAlbedo::roughness(alpha)),
-        e_avg_(specular * SpecularAlbedo::table().average(roughness_, eta, compensated)) {
-    if constexpr (Extensions) {
-      if (!extras) return;
-      extras_ = Parts{extras->diffuse_transmission, extras->transmitted_albedo, {}};
-      if (!extras->lane_etas) return;
-      std::array<float, N> eta;
-      for (int i = 0; i < N; ++i) eta[i] = (*extras->lane_etas)[i];
-      extras_->lanes =
-          LaneCoupling{SpecularAlbedo::Lanes<N>(eta), extras->lane_excess.value_or(SampledSpectrum<N>(0.f)), {}};
-      const float white_average = extras->lane_excess ? SpecularAlbedo::table().white_average(roughness_) : 0.f;
-      LaneCoupling& lanes = *extras_->lanes;
-      const std::array<float, N> average = SpecularAlbedo::table().average(roughness_, lanes.eta, compensated);
-      for (int i = 0; i < N; ++i) lanes.e_avg[i] = specular * (average[i] + lanes.excess[i] * white_average);
-    }
+        roughness_(SpecularAlbedo::roughness(alpha)) {
+    if constexpr (Extensions)
+      if (extras) {
+        extras_ = Parts{extras->diffuse_transmission, extras->transmitted_albedo, {}};
+        if (extras->lane_etas) {
+          couple_lanes(*extras, specular, compensated);
+          return;  // (e_avg_, for lanes that couple alike, unused)
+        }
+      }
+    e_avg_ = specular * SpecularAlbedo::table().average(roughness_, eta, compensated);
   }
 
   bool is_specular() const {
@@ -213,6 +208,18 @@ class PbrBsdf {
     }
   }
 
+  // Each lane's index placed on the albedo tables, and its E_avg (see the header).
+  void couple_lanes(const Extras& extras, float specular, bool compensated) {
+    std::array<float, N> eta;
+    for (int i = 0; i < N; ++i) eta[i] = (*extras.lane_etas)[i];
+    extras_->lanes =
+        LaneCoupling{SpecularAlbedo::Lanes<N>(eta), extras.lane_excess.value_or(SampledSpectrum<N>(0.f)), {}};
+    const float white_average = extras.lane_excess ? SpecularAlbedo::table().white_average(roughness_) : 0.f;
+    LaneCoupling& lanes = *extras_->lanes;
+    const std::array<float, N> average = SpecularAlbedo::table().average(roughness_, lanes.eta, compensated);
+    for (int i = 0; i < N; ++i) lanes.e_avg[i] = specular * (average[i] + lanes.excess[i] * white_average);
+  }
+
   // The lobe (0 the metal, 1 the dielectric) a non-delta sample came from, with its own f and pdf.
   struct Sampled {
     int lobe;
@@ -291,7 +298,7 @@ class PbrBsdf {
   float eta_, specular_;
   bool compensated_;
   SpecularAlbedo::Roughness roughness_;  // the specular lobe's α, on the albedo tables
-  float e_avg_;
+  float e_avg_ = 0;                      // E_avg of the diffuse coupling when every lane couples alike
   [[no_unique_address]] OptionalPart<Extensions, Parts> extras_;
   struct Outgoing {  // what depends on wo alone (E_o), for the last |μ_o| asked
     float mu = -1;   // none yet

@@ -59,11 +59,6 @@ const SpecularAlbedo& SpecularAlbedo::table() {
   return t;
 }
 
-SpecularAlbedo::Index SpecularAlbedo::index(float eta) {
-  const Lerp h = locate_eta(eta);
-  return {h.i, h.t};
-}
-
 void SpecularAlbedo::E(const Direction& d, int first, int last, bool compensated, std::span<float> out) const {
   const Point p = point(d);
   for (int h = first; h <= last; ++h) out[h - first] = reflection(h, compensated).at(p);
