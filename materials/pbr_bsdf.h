@@ -374,14 +374,12 @@ class LayeredBsdf {
     if (p[1] > 0) r += p[1] * sheen_.pdf(wo, wi);
     return r;
   }
-  BsdfEval<N> eval(const Vec3f& wo, const Vec3f& wi) const {
-    return mixture(wo, wi, layer_probabilities(wo), base_.eval(wo, wi));
-  }
+  BsdfEval<N> eval(const Vec3f& wo, const Vec3f& wi) const { return mixture(wo, wi, layer_probabilities(wo)); }
 
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
     const auto p = layer_probabilities(wo);
     std::optional<BsdfSample<N>> s;
-    std::optional<BsdfEval<N>> base;
+    int layer = 0;
     if (uc < p[0]) {
       s = coat_.sample_f(to_coat(wo, wo), uc / p[0], u);
       if (!s) return std::nullopt;
@@ -394,6 +392,7 @@ class LayeredBsdf {
       }
     } else if (uc < p[0] + p[1]) {
       s = sheen_.sample_f(wo, 0, u);
+      layer = 1;
     } else {
       s = base_.sample_f(wo, std::min((uc - p[0] - p[1]) / p[2], 0.99999994f), u);
       if (!s) return std::nullopt;
@@ -402,10 +401,11 @@ class LayeredBsdf {
         s->pdf *= p[2];
         return s;
       }
-      base = BsdfEval<N>{s->f, s->pdf};  // the base's sample holds its f and pdf
+      layer = 2;
     }
     if (!s) return std::nullopt;
-    const BsdfEval<N> e = mixture(wo, s->wi, p, base ? *base : base_.eval(wo, s->wi));
+    // The sampled layer's own f and pdf come with its sample.
+    const BsdfEval<N> e = mixture(wo, s->wi, p, Sampled{layer, {s->f, s->pdf}});
     if (!(e.pdf > 0)) return std::nullopt;
     s->f = e.f;
     s->pdf = e.pdf;
@@ -448,17 +448,33 @@ class LayeredBsdf {
   }
   float base_scale(const Vec3f& wo, const Vec3f& wi) const { return coat_scale(wo, wi) * sheen_scale(wo, wi); }
 
-  // f and Σ (probability of layer) × (its pdf), for the probabilities p of wo and the base's own f and pdf.
-  BsdfEval<N> mixture(const Vec3f& wo, const Vec3f& wi, const std::array<float, 3>& p, const BsdfEval<N>& base) const {
+  // The layer (0 the coat, 1 the sheen, 2 the base) a non-delta sample came from, with its own f and pdf.
+  struct Sampled {
+    int layer;
+    BsdfEval<N> eval;
+  };
+
+  // f and Σ (probability of layer) × (its pdf), for the probabilities p of wo; the layer a sample
+  // came from is not evaluated again.
+  BsdfEval<N> mixture(const Vec3f& wo, const Vec3f& wi, const std::array<float, 3>& p,
+                      const std::optional<Sampled>& sampled = {}) const {
+    const auto layer = [&](int i, const auto& evaluate) {
+      return sampled && sampled->layer == i ? sampled->eval : evaluate();
+    };
+    const BsdfEval<N> base = layer(2, [&] { return base_.eval(wo, wi); });
     BsdfEval<N> r{base.f * sheen_scale(wo, wi), p[2] * base.pdf};
-    if (sheen_weight_ > 0) r.f += sheen_.f(wo, wi);
+    std::optional<BsdfEval<N>> sheen;  // none at weight 0, where p[1] = 0 too
+    if (sheen_weight_ > 0) {
+      sheen = layer(1, [&] { return BsdfEval<N>{sheen_.f(wo, wi), sheen_.pdf(wo, wi)}; });
+      r.f += sheen->f;
+    }
     r.f *= coat_scale(wo, wi);
     if (coat_weight_ > 0 && same_hemisphere(wo, wi)) {
-      const BsdfEval<N> c = coat_.eval(to_coat(wo, wo), to_coat(wo, wi));
+      const BsdfEval<N> c = layer(0, [&] { return coat_.eval(to_coat(wo, wo), to_coat(wo, wi)); });
       r.f += c.f * coat_weight_;
       if (p[0] > 0) r.pdf += p[0] * c.pdf;
     }
-    if (p[1] > 0) r.pdf += p[1] * sheen_.pdf(wo, wi);
+    if (p[1] > 0) r.pdf += p[1] * sheen->pdf;
     return r;
   }
 
