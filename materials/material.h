@@ -309,13 +309,13 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
     extras.diffuse_transmission = p.diffuse_transmission;
     extras.transmitted_albedo = sampled(constant.diffuse_transmission_color, p.diffuse_transmission_color);
   }
-  const PbrBsdf<N, true> pbr(p.metallic, metal, dielectric, p.transmission, color, distribution.alpha(), eta,
-                             p.specular, dielectric_ms, extras);
   std::optional<typename LayeredBsdf<N>::Coat> coat;
   if (p.clearcoat > 0) coat = {p.clearcoat, sqr(p.clearcoat_roughness), 1.5f / n_front[0], at.coat_normal, ms};
   std::optional<typename LayeredBsdf<N>::Sheen> sheen;
   if (p.sheen_color.max() > 0) sheen = {sampled(constant.sheen_color, p.sheen_color), sqr(p.sheen_roughness)};
-  return Bsdf<N>(std::in_place_type<LayeredBsdf<N>>, pbr, coat, sheen);  // built where it is kept, not copied there
+  // Built where it is kept, the base inside it (not copied there).
+  return Bsdf<N>(std::in_place_type<LayeredBsdf<N>>, coat, sheen, p.metallic, metal, dielectric, p.transmission, color,
+                 distribution.alpha(), eta, p.specular, dielectric_ms, extras);
 }
 
 // make_bsdf for integrators that follow only the hero wavelength past a λ-dependent index ratio:

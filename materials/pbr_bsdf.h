@@ -335,8 +335,10 @@ class LayeredBsdf {
     float alpha;
   };
 
-  LayeredBsdf(const PbrBsdf<N, true>& base, const std::optional<Coat>& coat, const std::optional<Sheen>& sheen)
-      : base_(base),
+  // The base is built in place from PbrBsdf's arguments (it is large: copying it cost as much as building it).
+  template <typename... BaseArguments>
+  LayeredBsdf(const std::optional<Coat>& coat, const std::optional<Sheen>& sheen, const BaseArguments&... base)
+      : base_(base...),
         coat_(TrowbridgeReitz(coat ? coat->alpha : 0), coat ? coat->eta : 1, SampledSpectrum<N>(1.f), false, 0, 1,
               coat && coat->compensated),
         coat_compensated_(coat && coat->compensated),
