@@ -347,9 +347,9 @@ class LayeredBsdf {
         coat_eta_(coat ? std::max(coat->eta, 1.f) : 1),
         coat_tilted_(coat && coat->normal != Vec3f(0, 0, 1)),
         coat_frame_(Frame::from_z(coat_tilted_ ? coat->normal : Vec3f(0, 0, 1))),
-        sheen_(sheen ? sheen->color : SampledSpectrum<N>(0.f), sheen ? sheen->alpha : 1),
-        sheen_weight_(sheen ? sheen->color.max() : 0),
-        sheen_roughness_(SheenAlbedo::roughness(sheen ? sheen->alpha : 1)) {}
+        sheen_roughness_(SheenRoughness::of(sheen ? sheen->alpha : 1)),
+        sheen_(sheen ? sheen->color : SampledSpectrum<N>(0.f), sheen_roughness_),
+        sheen_weight_(sheen ? sheen->color.max() : 0) {}
 
   bool is_specular() const {
     return base_.is_specular() && sheen_weight_ == 0 && (coat_weight_ == 0 || coat_.is_specular());
@@ -431,7 +431,7 @@ class LayeredBsdf {
     const float mu = (coat_tilted_ ? dot(w.z < 0 ? -w : w, coat_frame_.z) : std::abs(w.z));
     return mu > 0 ? coat_weight_ * SpecularAlbedo::table().E(mu, coat_roughness_, coat_eta_, coat_compensated_) : 0.f;
   }
-  float sheen_E(float mu) const { return sheen_weight_ * SheenAlbedo::table().E(std::abs(mu), sheen_roughness_); }
+  float sheen_E(float mu) const { return sheen_weight_ * SheenAlbedo::table().E(std::abs(mu), sheen_roughness_.cell); }
   // The coat's and the sheen's albedos towards wo, kept for the next evaluation from the same wo.
   struct Outgoing {
     Vec3f wo{0, 0, 0};  // none yet
@@ -499,10 +499,10 @@ class LayeredBsdf {
   float coat_eta_;
   bool coat_tilted_;
   Frame coat_frame_;
+  SheenRoughness sheen_roughness_;  // what the sheen's α gives (its place on the albedo table: .cell)
   SheenBsdf<N> sheen_;
   float sheen_weight_;
-  SheenAlbedo::Roughness sheen_roughness_;  // where the sheen's α falls on its albedo table
-  mutable Outgoing outgoing_;               // a cache: safe because a Bsdf is built and used within one thread
+  mutable Outgoing outgoing_;  // a cache: safe because a Bsdf is built and used within one thread
 };
 
 }  // namespace prism
