@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "accel/bvh_traverse.h"
+
 namespace prism {
 
 namespace {
@@ -102,8 +104,10 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
     }
     mesh_trees_.emplace_back(triangles, ids);
   }
+  if (!mesh_trees_.empty()) to_object_.assign(instances.size(), Transform{{}});
   tbb::parallel_for(size_t(0), instances.size(), [&](size_t i) {
     if (!shared(instances[i])) return;
+    to_object_[i] = instances[i].to_world.inverse();
     const Bvh& tree = mesh_trees_[tree_of_mesh_[instances[i].mesh]].bvh;
     if (!tree.empty()) bounds[world_count + i] = transform_bounds(instances[i].to_world, tree.bounds());
   });
@@ -115,6 +119,8 @@ struct Accel::Closest {
   uint32_t id = 0;  // its global triangle number: 0 before any, so that t = tmax never wins
   uint32_t instance = kWorld;
   TriangleHit hit{};
+  const TriangleBlock* block = nullptr;  // where its vertices are, in lane `lane`
+  int lane = 0;
 };
 
 template <bool AnyHit>
@@ -132,7 +138,7 @@ template <bool AnyHit>
       // The order of (t, id) decides, so that ties go the same way whatever the traversal order.
       if (hits.t[lane] < closest.t || (hits.t[lane] == closest.t && id < closest.id)) {
         if constexpr (AnyHit) return true;
-        closest = {hits.t[lane], id, instance, hits.lane(lane)};
+        closest = {hits.t[lane], id, instance, hits.lane(lane), &block, lane};
         found = true;
       }
     }
@@ -148,9 +154,8 @@ bool Accel::trace(const Ray& ray, Closest& closest) const {
     return test_blocks<AnyHit>(world_, first, count, kWorld, world_ray, closest);
   };
   const auto enter = [&](uint32_t instance) {
-    const Instance& inst = instances_[instance];
-    const TriangleTree& tree = mesh_trees_[tree_of_mesh_[inst.mesh]];
-    const Transform to_object = inst.to_world.inverse();
+    const TriangleTree& tree = mesh_trees_[tree_of_mesh_[instances_[instance].mesh]];
+    const Transform& to_object = to_object_[instance];
     if (to_object.m[3][3] == 0) return false;  // singular: a flat instance nothing hits
     // In the mesh's space the direction is not unit length, so t stays the world-space distance.
     const Ray object_ray{Vec3f(to_object.point(Vec3d(ray.o))), Vec3f(to_object.vector(Vec3d(ray.d))), ray.tmax};
@@ -179,10 +184,21 @@ bool Accel::intersect(const Ray& ray, AccelHit& hit) const {
   Closest closest{ray.tmax};
   if (!trace<false>(ray, closest)) return false;
   uint32_t instance = closest.instance;
-  if (instance == kWorld)
-    instance = uint32_t(std::upper_bound(first_prim_.begin(), first_prim_.end(), closest.id) - first_prim_.begin() - 1);
+  if (instance == kWorld) {
+    // The last instance whose first triangle is at most id: a binary search whose steps are
+    // selects, not branches (std::upper_bound's mispredict about every other step).
+    const uint32_t* first = first_prim_.data();
+    for (size_t n = first_prim_.size(); n > 1; n -= n / 2) first = first[n / 2] <= closest.id ? first + n / 2 : first;
+    instance = uint32_t(first - first_prim_.data());
+  }
   const TriangleHit& h = closest.hit;
-  hit = {h.t, h.b0, h.b1, h.b2, instance, closest.id - first_prim_[instance]};
+  hit = {h.t, h.b0, h.b1, h.b2, instance, closest.id - first_prim_[instance], {}};
+  for (int k = 0; k < 3; ++k) {
+    const simd::f8* v = closest.block->v[k];
+    hit.v[k] = {v[0][closest.lane], v[1][closest.lane], v[2][closest.lane]};
+    // A shared mesh's triangle, in its own space: to world space as the flattened ones were.
+    if (closest.instance != kWorld) hit.v[k] = Vec3f(instances_[instance].to_world.point(Vec3d(hit.v[k])));
+  }
   return true;
 }
 
@@ -192,7 +208,8 @@ bool Accel::occluded(const Ray& ray) const {
 }
 
 size_t Accel::memory_bytes() const {
-  size_t bytes = world_.memory_bytes() + first_prim_.size() * sizeof(uint32_t) + tree_of_mesh_.size() * sizeof(int);
+  size_t bytes = world_.memory_bytes() + first_prim_.size() * sizeof(uint32_t) + tree_of_mesh_.size() * sizeof(int) +
+                 to_object_.size() * sizeof(Transform);
   for (const TriangleTree& t : mesh_trees_) bytes += t.memory_bytes();
   return bytes;
 }

@@ -5,11 +5,12 @@
 // Two levels where they pay: the instances of a mesh that no other instance uses are copied
 // into one world-space BVH (the fastest to trace); a mesh shared by several instances gets one
 // BVH in its own space, and each of its instances enters the world BVH as a leaf of its own,
-// which the ray crosses into the mesh's space through the instance's transform (the instances'
-// own array, read while tracing: no per-instance copy, so millions of instances stay small). Queries are
+// which the ray crosses into the mesh's space through the instance's inverse transform (computed
+// once, 128 bytes per instance; the instances' own array is read while tracing). Queries are
 // exact functions of the geometry: the closest hit is the one with the smallest t, and among
 // equally close ones the smallest global_prim, whatever the trees' shapes or visiting order.
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -39,6 +40,11 @@ struct AccelHit {
   float b0, b1, b2;   // barycentrics of the triangle's three vertices
   uint32_t instance;  // index into the instances given at build time
   uint32_t prim;      // triangle index within the instance's mesh
+  // The triangle's vertices in world space, as the accel tested them: a flattened triangle's as
+  // it stored them, a shared mesh's transformed by its instance exactly as flattening does (in
+  // double, rounded once). From the leaf block the ray just tested, so the shading point costs
+  // no further look-up in the mesh's index and position buffers.
+  std::array<Vec3f, 3> v;
 };
 
 class Accel {
@@ -80,6 +86,10 @@ class Accel {
   TriangleTree world_;
   std::vector<TriangleTree> mesh_trees_;
   std::span<const Instance> instances_;
+  // Per instance, the inverse of its transform if its mesh is shared (all zeros otherwise, or when
+  // singular; none at all without shared meshes): computed once here rather than on every ray
+  // that enters the instance.
+  std::vector<Transform> to_object_;
   std::vector<int> tree_of_mesh_;  // into mesh_trees_, or −1 for a mesh flattened into world_
   std::vector<uint32_t> first_prim_;
   size_t triangle_count_ = 0;

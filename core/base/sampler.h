@@ -17,6 +17,10 @@
 //   independent: uniform random numbers (a PCG32 stream per pixel, jumped ahead per sample).
 
 #include <cstdint>
+#include <type_traits>
+#ifdef __GFNI__
+#include <immintrin.h>
+#endif
 
 #include "base/rng.h"
 #include "base/vec.h"
@@ -27,7 +31,17 @@ enum class SamplerKind { independent, sobol };
 
 namespace sobol {
 
+// Bit i to bit 31 − i. With GFNI (x86), one affine transform over GF(2) reverses each byte's bits
+// (the matrix of 0x8040201008040201) and a byte swap does the rest: 4 instructions for 13, on the
+// path of every sampler draw (3 reversals per 2D sample).
 constexpr uint32_t reverse_bits(uint32_t v) {
+#ifdef __GFNI__
+  if (!std::is_constant_evaluated()) {
+    const __m128i bytes_reversed =
+        _mm_gf2p8affine_epi64_epi8(_mm_cvtsi32_si128(int(v)), _mm_set1_epi64x(0x8040201008040201), 0);
+    return __builtin_bswap32(uint32_t(_mm_cvtsi128_si32(bytes_reversed)));
+  }
+#endif
   v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
   v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
   v = ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
@@ -108,6 +122,16 @@ class Sampler {
   // first), and stays stratified over the pixel's samples at any depth.
   static constexpr uint32_t kCameraDimensions = 2, kBounceDimensions = 8;
   void start_bounce(int depth) { dimension_ = kCameraDimensions + uint32_t(depth) * kBounceDimensions; }
+
+  // Moves on past the next 2D draw as get_2d would, for a caller that drew it before (the
+  // renderer draws a batch of samples' pixel jitter first).
+  void skip_2d() {
+    if (kind_ == SamplerKind::independent) {
+      rng_.advance(2);
+      return;
+    }
+    ++dimension_;
+  }
 
   float get_1d() {
     if (kind_ == SamplerKind::independent) return rng_.uniform();

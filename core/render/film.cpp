@@ -26,21 +26,21 @@ uint64_t Film::bytes_per_pixel(uint32_t aovs, const SpectralBins& bins) {
   return fixed * sizeof(Fixed) + 2 * sizeof(uint32_t);
 }
 
-bool Film::add(size_t p, const FilmSample& s, int replicate) {
-  const bool valid = fixed_in_range(s.xyz.x) && fixed_in_range(s.xyz.y) && fixed_in_range(s.xyz.z);
-  const Xyz xyz = valid ? s.xyz : Xyz{0, 0, 0};
-  Fixed* sum = &sum_[p * 3];
-  sum[0] += to_fixed(xyz.x);
-  sum[1] += to_fixed(xyz.y);
-  sum[2] += to_fixed(xyz.z);
-  const double v[3] = {xyz.x, xyz.y, xyz.z};
-  for (int c = 0; c < 3; ++c) sq_[p * 3 + c] += to_fixed(v[c] * v[c], kFixedSquareBits);
-  if (replicate == 0) {
-    ++count_[p];
-  } else {
-    for (int c = 0; c < 3; ++c) second_sum_[p * 3 + c] += to_fixed(v[c]);
-    ++second_count_[p];
+bool Film::add_repeated(size_t p, const Xyz& xyz, uint32_t n, int replicate) {
+  const bool valid = fixed_in_range(xyz.x) && fixed_in_range(xyz.y) && fixed_in_range(xyz.z);
+  const double v[3] = {valid ? xyz.x : 0.f, valid ? xyz.y : 0.f, valid ? xyz.z : 0.f};
+  for (int c = 0; c < 3; ++c) {
+    const Fixed value = to_fixed(v[c]);
+    sum_[p * 3 + c] += n * value;
+    sq_[p * 3 + c] += n * to_fixed(v[c] * v[c], kFixedSquareBits);
+    if (replicate != 0) second_sum_[p * 3 + c] += n * value;
   }
+  (replicate == 0 ? count_ : second_count_)[p] += n;
+  return valid;
+}
+
+bool Film::add(size_t p, const FilmSample& s, int replicate) {
+  const bool valid = add_repeated(p, s.xyz, 1, replicate);
   if (!aov_.empty() && valid) {
     Fixed* a = &aov_[p * kAovFields];
     const float values[6] = {s.albedo.x, s.albedo.y, s.albedo.z, s.normal.x, s.normal.y, s.normal.z};

@@ -51,9 +51,10 @@ World::World(const Scene& scene, const AccelOptions& accel)
     if (const auto* pbr = std::get_if<PbrMaterial>(&scene.materials[i].kind)) spectra_[i].emplace(*pbr);
 }
 
-// Transformed exactly as the accel transforms the triangles it flattens into world space, so the
-// shading point lies on the very triangle the ray hit. (A hit on an instanced mesh is found in
-// the mesh's space; its barycentrics carry over, as the transform is affine.)
+// Transformed exactly as the accel transforms the triangles it flattens into world space (and
+// hands back with a hit, AccelHit::v), so a light's triangle is the very one rays hit. (A hit on
+// an instanced mesh is found in the mesh's space; its barycentrics carry over, as the transform
+// is affine.)
 std::array<Vec3f, 3> World::world_vertices(const Instance& inst, uint32_t prim) const {
   const Mesh& m = scene_.meshes[inst.mesh];
   std::array<Vec3f, 3> v;
@@ -155,7 +156,7 @@ SurfaceInteraction World::surface_point(const Ray& ray, const AccelHit& hit) con
   const Instance& instance = scene_.instances[hit.instance];
   const Mesh& m = scene_.meshes[instance.mesh];
   const InstanceNormals& normals = instance_normals_[hit.instance];
-  const auto v = world_vertices(instance, hit.prim);
+  const auto& v = hit.v;  // as world_vertices(instance, hit.prim), from the accel's leaf
   const float b[3] = {hit.b0, hit.b1, hit.b2};
   SurfaceInteraction si;
   si.p = v[0] * b[0] + v[1] * b[1] + v[2] * b[2];

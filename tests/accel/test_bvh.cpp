@@ -81,7 +81,8 @@ struct Reference {
 class BruteForce {
  public:
   static constexpr int kLanes = TriangleBlock::kLanes;
-  explicit BruteForce(const std::vector<Triangle>& triangles) : blocks_((triangles.size() + kLanes - 1) / kLanes) {
+  explicit BruteForce(const std::vector<Triangle>& triangles)
+      : triangles_(triangles), blocks_((triangles.size() + kLanes - 1) / kLanes) {
     for (uint32_t p = 0; p < triangles.size(); ++p)
       blocks_[p / kLanes].set(int(p % kLanes), triangles[p][0], triangles[p][1], triangles[p][2], p);
   }
@@ -99,8 +100,10 @@ class BruteForce {
     }
     return best;
   }
+  const Triangle& triangle(uint32_t p) const { return triangles_[p]; }
 
  private:
+  std::vector<Triangle> triangles_;
   std::vector<TriangleBlock> blocks_;
 };
 
@@ -122,6 +125,8 @@ void require_exact(const Accel& accel, const BruteForce& brute_force, const Ray&
   REQUIRE(hit.b0 == ref.h.b0);
   REQUIRE(hit.b1 == ref.h.b1);
   REQUIRE(hit.b2 == ref.h.b2);
+  // The vertices handed back are the hit triangle's, in world space, bit for bit.
+  for (int k = 0; k < 3; ++k) REQUIRE(hit.v[k] == brute_force.triangle(ref.prim)[k]);
 }
 
 Vec3f random_in(Rng& rng, float lo, float hi) {
@@ -344,6 +349,9 @@ TEST_CASE("shared meshes traced through their instances' transforms") {
       REQUIRE(hit.instance == ref.instance);
       REQUIRE(hit.prim == ref.prim);
       REQUIRE(hit.b0 == ref.b0);
+      // A shared mesh's triangle comes back in world space, transformed exactly as flattening
+      // transforms it (so as World's lights and the shading point see it), mirrored ones too.
+      for (int k = 0; k < 3; ++k) REQUIRE(hit.v[k] == brute_force.triangle(accel.global_prim(hit))[k]);
     }
     // ... and, to rounding, as the same triangles flattened into world space.
     require_exact(flat, brute_force, ray);

@@ -102,6 +102,24 @@ TEST_CASE("uniform triangle barycentrics cover the triangle evenly") {
   CHECK(double(in_corner) / n == Approx(0.25).margin(0.01));
 }
 
+TEST_CASE("reverse_bits moves bit i to bit 31 - i (the run-time path, GFNI where the build has it)") {
+  const auto reversed_by_loop = [](uint32_t v) {
+    uint32_t r = 0;
+    for (int i = 0; i < 32; ++i) r |= (v >> i & 1u) << (31 - i);
+    return r;
+  };
+  static_assert(sobol::reverse_bits(1u) == 0x80000000u && sobol::reverse_bits(0x12345678u) == 0x1e6a2c48u);
+  Rng rng(7, 0);
+  volatile uint32_t fixed[] = {0u, 1u, 0x80000000u, 0xffffffffu, 0x12345678u, 0x0000ff00u};
+  for (uint32_t v : fixed) CHECK(sobol::reverse_bits(v) == reversed_by_loop(v));
+  int wrong = 0;
+  for (int i = 0; i < 100000; ++i) {
+    const uint32_t v = rng.next_u32();
+    wrong += sobol::reverse_bits(v) != reversed_by_loop(v);
+  }
+  CHECK(wrong == 0);
+}
+
 TEST_CASE("the Sobol sampler stratifies each dimension over a pixel's samples") {
   // With 2^k samples, every 1D request hits each of the 2^k strata exactly once, and every 2D
   // request each of the 2^(k/2) x 2^(k/2) cells (a (0,2)-net), in every dimension and pixel.
@@ -221,6 +239,23 @@ TEST_CASE("the Sobol sampler's dimensions are uncorrelated: pixel jitter against
   const double p_value = 1 - test::regularized_gamma_p((kBins * kBins - 1) / 2.0, statistic / 2);
   INFO("chi2 " << statistic << " for " << kBins * kBins - 1 << " degrees of freedom, p " << p_value);
   CHECK(p_value > 1e-3);
+}
+
+TEST_CASE("skip_2d moves a sampler on exactly as a get_2d would") {
+  // The renderer draws a batch of samples' pixel jitter first, then each sample skips it.
+  for (const SamplerKind kind : {SamplerKind::independent, SamplerKind::sobol})
+    for (int s = 0; s < 9; ++s) {
+      Sampler drawn(11, kind), skipped(11, kind);
+      drawn.start_pixel_sample({3, 4}, s);
+      skipped.start_pixel_sample({3, 4}, s);
+      drawn.get_2d();
+      skipped.skip_2d();
+      INFO("sampler " << int(kind) << ", sample " << s);
+      const Vec2f a = drawn.get_2d(), b = skipped.get_2d();
+      CHECK(a.x == b.x);
+      CHECK(a.y == b.y);
+      CHECK(drawn.get_1d() == skipped.get_1d());
+    }
 }
 
 TEST_CASE("a pixel started once gives each sample the values of that sample started alone") {

@@ -71,6 +71,23 @@ RenderOptions options_with(int spp, int threads, uint64_t seed = 3) {
 
 }  // namespace
 
+TEST_CASE("a film given n equal samples at once holds what n single adds give, bit for bit") {
+  // The renderer adds a pixel's camera samples that see the constant sky this way.
+  for (const Xyz xyz : {Xyz{0.3f, 0.7f, 1.9f}, Xyz{-2.5e-3f, 1e6f, 0.f}, Xyz{NAN, 1.f, 1.f}, Xyz{3e9f, 0.f, 0.f}}) {
+    Film one(3, 2, kAovAlbedo | kAovDepth), many(3, 2, kAovAlbedo | kAovDepth);
+    for (Film* f : {&one, &many})
+      f->add(4, FilmSample{{0.25f, 0.5f, 0.125f}, {0.5f, 0.5f, 0.5f}, {0, 0, 1}, 2.f, true});
+    const bool valid = std::isfinite(xyz.x) && xyz.x < 1e9f;
+    for (int replicate = 0; replicate < 2; ++replicate) {
+      for (int i = 0; i < 7; ++i) CHECK(one.add(4, FilmSample{xyz}, replicate) == valid);
+      CHECK(many.add_repeated(4, xyz, 7, replicate) == valid);
+    }
+    CHECK(film_bytes(one) == film_bytes(many));
+    CHECK(many.samples(4) == 8);
+    CHECK(many.second_replicate_samples(4) == 7);
+  }
+}
+
 TEST_CASE("the pass schedule is fixed: 1, 2, 4, 8, 16, then every 16, cut at the total") {
   CHECK(pass_end(0, 100) == 1);
   CHECK(pass_end(3, 100) == 8);
