@@ -290,12 +290,14 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
       for (int i = 0; i < N; ++i) reflecting[i] = ior_with_scaled_f0(eta, tint[i]);
       lanes->eta = reflecting;
     }
-    extras.lane_etas = reflecting;
-    if (film) {  // coupled as an interface of the film's peak reflectance, and its excess (thin_film.h)
-      extras.lane_excess.emplace();
-      for (int i = 0; i < N; ++i) {
-        (*extras.lane_etas)[i] = film_coupling_index(film_lanes->ior[i], reflecting[i]);
-        (*extras.lane_excess)[i] = p.iridescence * film_reflectance_excess(film_lanes->ior[i], reflecting[i]);
+    if ((1 - p.metallic) * (1 - p.transmission) > 0) {  // only a diffuse base of some weight is coupled
+      extras.lane_etas = reflecting;
+      if (film) {  // coupled as an interface of the film's peak reflectance, and its excess (thin_film.h)
+        extras.lane_excess.emplace();
+        for (int i = 0; i < N; ++i) {
+          (*extras.lane_etas)[i] = film_coupling_index(film_lanes->ior[i], reflecting[i]);
+          (*extras.lane_excess)[i] = p.iridescence * film_reflectance_excess(film_lanes->ior[i], reflecting[i]);
+        }
       }
     }
   }
@@ -307,13 +309,13 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
     extras.diffuse_transmission = p.diffuse_transmission;
     extras.transmitted_albedo = sampled(constant.diffuse_transmission_color, p.diffuse_transmission_color);
   }
-  const PbrBsdf<N, true> pbr(p.metallic, metal, dielectric, p.transmission, color, distribution.alpha(), eta,
-                             p.specular, dielectric_ms, extras);
   std::optional<typename LayeredBsdf<N>::Coat> coat;
   if (p.clearcoat > 0) coat = {p.clearcoat, sqr(p.clearcoat_roughness), 1.5f / n_front[0], at.coat_normal, ms};
   std::optional<typename LayeredBsdf<N>::Sheen> sheen;
   if (p.sheen_color.max() > 0) sheen = {sampled(constant.sheen_color, p.sheen_color), sqr(p.sheen_roughness)};
-  return LayeredBsdf<N>(pbr, coat, sheen);
+  // Built where it is kept, the base inside it (not copied there).
+  return Bsdf<N>(std::in_place_type<LayeredBsdf<N>>, coat, sheen, p.metallic, metal, dielectric, p.transmission, color,
+                 distribution.alpha(), eta, p.specular, dielectric_ms, extras);
 }
 
 // make_bsdf for integrators that follow only the hero wavelength past a λ-dependent index ratio:

@@ -59,21 +59,16 @@ class PbrBsdf {
         eta_(eta),
         specular_(specular),
         compensated_(compensated),
-        roughness_(SpecularAlbedo::roughness(alpha)),
-        e_avg_(specular * SpecularAlbedo::table().average(roughness_, eta, compensated)) {
-    if constexpr (Extensions) {
-      if (!extras) return;
-      extras_ = Parts{extras->diffuse_transmission, extras->transmitted_albedo, {}};
-      if (!extras->lane_etas) return;
-      std::array<float, N> eta;
-      for (int i = 0; i < N; ++i) eta[i] = (*extras->lane_etas)[i];
-      extras_->lanes =
-          LaneCoupling{SpecularAlbedo::Lanes<N>(eta), extras->lane_excess.value_or(SampledSpectrum<N>(0.f)), {}};
-      const float white_average = extras->lane_excess ? SpecularAlbedo::table().white_average(roughness_) : 0.f;
-      LaneCoupling& lanes = *extras_->lanes;
-      const std::array<float, N> average = SpecularAlbedo::table().average(roughness_, lanes.eta, compensated);
-      for (int i = 0; i < N; ++i) lanes.e_avg[i] = specular * (average[i] + lanes.excess[i] * white_average);
-    }
+        roughness_(SpecularAlbedo::roughness(alpha)) {
+    if constexpr (Extensions)
+      if (extras) {
+        extras_ = Parts{extras->diffuse_transmission, extras->transmitted_albedo, {}};
+        if (extras->lane_etas) {
+          couple_lanes(*extras, specular, compensated);
+          return;  // (e_avg_, for lanes that couple alike, unused)
+        }
+      }
+    e_avg_ = specular * SpecularAlbedo::table().average(roughness_, eta, compensated);
   }
 
   bool is_specular() const {
@@ -213,6 +208,18 @@ class PbrBsdf {
     }
   }
 
+  // Each lane's index placed on the albedo tables, and its E_avg (see the header).
+  void couple_lanes(const Extras& extras, float specular, bool compensated) {
+    std::array<float, N> eta;
+    for (int i = 0; i < N; ++i) eta[i] = (*extras.lane_etas)[i];
+    extras_->lanes =
+        LaneCoupling{SpecularAlbedo::Lanes<N>(eta), extras.lane_excess.value_or(SampledSpectrum<N>(0.f)), {}};
+    const float white_average = extras.lane_excess ? SpecularAlbedo::table().white_average(roughness_) : 0.f;
+    LaneCoupling& lanes = *extras_->lanes;
+    const std::array<float, N> average = SpecularAlbedo::table().average(roughness_, lanes.eta, compensated);
+    for (int i = 0; i < N; ++i) lanes.e_avg[i] = specular * (average[i] + lanes.excess[i] * white_average);
+  }
+
   // The lobe (0 the metal, 1 the dielectric) a non-delta sample came from, with its own f and pdf.
   struct Sampled {
     int lobe;
@@ -291,7 +298,7 @@ class PbrBsdf {
   float eta_, specular_;
   bool compensated_;
   SpecularAlbedo::Roughness roughness_;  // the specular lobe's α, on the albedo tables
-  float e_avg_;
+  float e_avg_ = 0;                      // E_avg of the diffuse coupling when every lane couples alike
   [[no_unique_address]] OptionalPart<Extensions, Parts> extras_;
   struct Outgoing {  // what depends on wo alone (E_o), for the last |μ_o| asked
     float mu = -1;   // none yet
@@ -328,8 +335,10 @@ class LayeredBsdf {
     float alpha;
   };
 
-  LayeredBsdf(const PbrBsdf<N, true>& base, const std::optional<Coat>& coat, const std::optional<Sheen>& sheen)
-      : base_(base),
+  // The base is built in place from PbrBsdf's arguments (it is large: copying it cost as much as building it).
+  template <typename... BaseArguments>
+  LayeredBsdf(const std::optional<Coat>& coat, const std::optional<Sheen>& sheen, const BaseArguments&... base)
+      : base_(base...),
         coat_(TrowbridgeReitz(coat ? coat->alpha : 0), coat ? coat->eta : 1, SampledSpectrum<N>(1.f), false, 0, 1,
               coat && coat->compensated),
         coat_compensated_(coat && coat->compensated),
@@ -338,9 +347,9 @@ class LayeredBsdf {
         coat_eta_(coat ? std::max(coat->eta, 1.f) : 1),
         coat_tilted_(coat && coat->normal != Vec3f(0, 0, 1)),
         coat_frame_(Frame::from_z(coat_tilted_ ? coat->normal : Vec3f(0, 0, 1))),
-        sheen_(sheen ? sheen->color : SampledSpectrum<N>(0.f), sheen ? sheen->alpha : 1),
-        sheen_weight_(sheen ? sheen->color.max() : 0),
-        sheen_roughness_(SheenAlbedo::roughness(sheen ? sheen->alpha : 1)) {}
+        sheen_roughness_(SheenRoughness::of(sheen ? sheen->alpha : 1)),
+        sheen_(sheen ? sheen->color : SampledSpectrum<N>(0.f), sheen_roughness_),
+        sheen_weight_(sheen ? sheen->color.max() : 0) {}
 
   bool is_specular() const {
     return base_.is_specular() && sheen_weight_ == 0 && (coat_weight_ == 0 || coat_.is_specular());
@@ -367,14 +376,12 @@ class LayeredBsdf {
     if (p[1] > 0) r += p[1] * sheen_.pdf(wo, wi);
     return r;
   }
-  BsdfEval<N> eval(const Vec3f& wo, const Vec3f& wi) const {
-    return mixture(wo, wi, layer_probabilities(wo), base_.eval(wo, wi));
-  }
+  BsdfEval<N> eval(const Vec3f& wo, const Vec3f& wi) const { return mixture(wo, wi, layer_probabilities(wo)); }
 
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
     const auto p = layer_probabilities(wo);
     std::optional<BsdfSample<N>> s;
-    std::optional<BsdfEval<N>> base;
+    int layer = 0;
     if (uc < p[0]) {
       s = coat_.sample_f(to_coat(wo, wo), uc / p[0], u);
       if (!s) return std::nullopt;
@@ -387,6 +394,7 @@ class LayeredBsdf {
       }
     } else if (uc < p[0] + p[1]) {
       s = sheen_.sample_f(wo, 0, u);
+      layer = 1;
     } else {
       s = base_.sample_f(wo, std::min((uc - p[0] - p[1]) / p[2], 0.99999994f), u);
       if (!s) return std::nullopt;
@@ -395,10 +403,11 @@ class LayeredBsdf {
         s->pdf *= p[2];
         return s;
       }
-      base = BsdfEval<N>{s->f, s->pdf};  // the base's sample holds its f and pdf
+      layer = 2;
     }
     if (!s) return std::nullopt;
-    const BsdfEval<N> e = mixture(wo, s->wi, p, base ? *base : base_.eval(wo, s->wi));
+    // The sampled layer's own f and pdf come with its sample.
+    const BsdfEval<N> e = mixture(wo, s->wi, p, Sampled{layer, {s->f, s->pdf}});
     if (!(e.pdf > 0)) return std::nullopt;
     s->f = e.f;
     s->pdf = e.pdf;
@@ -422,7 +431,7 @@ class LayeredBsdf {
     const float mu = (coat_tilted_ ? dot(w.z < 0 ? -w : w, coat_frame_.z) : std::abs(w.z));
     return mu > 0 ? coat_weight_ * SpecularAlbedo::table().E(mu, coat_roughness_, coat_eta_, coat_compensated_) : 0.f;
   }
-  float sheen_E(float mu) const { return sheen_weight_ * SheenAlbedo::table().E(std::abs(mu), sheen_roughness_); }
+  float sheen_E(float mu) const { return sheen_weight_ * SheenAlbedo::table().E(std::abs(mu), sheen_roughness_.cell); }
   // The coat's and the sheen's albedos towards wo, kept for the next evaluation from the same wo.
   struct Outgoing {
     Vec3f wo{0, 0, 0};  // none yet
@@ -441,17 +450,33 @@ class LayeredBsdf {
   }
   float base_scale(const Vec3f& wo, const Vec3f& wi) const { return coat_scale(wo, wi) * sheen_scale(wo, wi); }
 
-  // f and Σ (probability of layer) × (its pdf), for the probabilities p of wo and the base's own f and pdf.
-  BsdfEval<N> mixture(const Vec3f& wo, const Vec3f& wi, const std::array<float, 3>& p, const BsdfEval<N>& base) const {
+  // The layer (0 the coat, 1 the sheen, 2 the base) a non-delta sample came from, with its own f and pdf.
+  struct Sampled {
+    int layer;
+    BsdfEval<N> eval;
+  };
+
+  // f and Σ (probability of layer) × (its pdf), for the probabilities p of wo; the layer a sample
+  // came from is not evaluated again.
+  BsdfEval<N> mixture(const Vec3f& wo, const Vec3f& wi, const std::array<float, 3>& p,
+                      const std::optional<Sampled>& sampled = {}) const {
+    const auto layer = [&](int i, const auto& evaluate) {
+      return sampled && sampled->layer == i ? sampled->eval : evaluate();
+    };
+    const BsdfEval<N> base = layer(2, [&] { return base_.eval(wo, wi); });
     BsdfEval<N> r{base.f * sheen_scale(wo, wi), p[2] * base.pdf};
-    if (sheen_weight_ > 0) r.f += sheen_.f(wo, wi);
+    std::optional<BsdfEval<N>> sheen;  // none at weight 0, where p[1] = 0 too
+    if (sheen_weight_ > 0) {
+      sheen = layer(1, [&] { return BsdfEval<N>{sheen_.f(wo, wi), sheen_.pdf(wo, wi)}; });
+      r.f += sheen->f;
+    }
     r.f *= coat_scale(wo, wi);
     if (coat_weight_ > 0 && same_hemisphere(wo, wi)) {
-      const BsdfEval<N> c = coat_.eval(to_coat(wo, wo), to_coat(wo, wi));
+      const BsdfEval<N> c = layer(0, [&] { return coat_.eval(to_coat(wo, wo), to_coat(wo, wi)); });
       r.f += c.f * coat_weight_;
       if (p[0] > 0) r.pdf += p[0] * c.pdf;
     }
-    if (p[1] > 0) r.pdf += p[1] * sheen_.pdf(wo, wi);
+    if (p[1] > 0) r.pdf += p[1] * sheen->pdf;
     return r;
   }
 
@@ -474,10 +499,10 @@ class LayeredBsdf {
   float coat_eta_;
   bool coat_tilted_;
   Frame coat_frame_;
+  SheenRoughness sheen_roughness_;  // what the sheen's α gives (its place on the albedo table: .cell)
   SheenBsdf<N> sheen_;
   float sheen_weight_;
-  SheenAlbedo::Roughness sheen_roughness_;  // where the sheen's α falls on its albedo table
-  mutable Outgoing outgoing_;               // a cache: safe because a Bsdf is built and used within one thread
+  mutable Outgoing outgoing_;  // a cache: safe because a Bsdf is built and used within one thread
 };
 
 }  // namespace prism

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <optional>
 
+#include "base/kept_per_thread.h"
 #include "base/warp.h"
 #include "materials/bsdf_sample.h"
 #include "materials/sheen_albedo.h"
@@ -56,11 +57,27 @@ class CharlieSheen {
   float L_half_;  // L(½), where Λ is mirrored
 };
 
+// What a sheen of roughness α needs that depends on α alone: the fitted lobe (its parameters, and
+// L(½), a pow), its albedo table's scale and cell. A material's few α recur at every hit, so the
+// last few are kept per thread.
+struct SheenRoughness {
+  CharlieSheen charlie;
+  float scale;
+  SheenAlbedo::Roughness cell;
+
+  static SheenRoughness of(float alpha) {
+    return kept_per_thread(alpha, [](float a) {
+      return SheenRoughness{CharlieSheen(a), SheenAlbedo::table().scale(a), SheenAlbedo::roughness(a)};
+    });
+  }
+};
+
 template <int N>
 class SheenBsdf {
  public:
-  SheenBsdf(const SampledSpectrum<N>& color, float alpha)
-      : color_(color * SheenAlbedo::table().scale(alpha)), charlie_(alpha) {}
+  SheenBsdf(const SampledSpectrum<N>& color, const SheenRoughness& roughness)
+      : color_(color * roughness.scale), charlie_(roughness.charlie) {}
+  SheenBsdf(const SampledSpectrum<N>& color, float alpha) : SheenBsdf(color, SheenRoughness::of(alpha)) {}
 
   bool is_specular() const { return false; }
   DeltaLobes<N> delta_lobes(const Vec3f&) const { return {}; }

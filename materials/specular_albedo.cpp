@@ -1,8 +1,6 @@
 #include "materials/specular_albedo.h"
 
-#include <array>
-#include <limits>
-
+#include "base/kept_per_thread.h"
 #include "materials/albedo_tables.h"
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"
@@ -30,22 +28,11 @@ float reflection_at(const Point& p, float eta, bool compensated) {
 
 SpecularAlbedo::Roughness SpecularAlbedo::roughness(float alpha) {
   // The lobes of a material (metal, dielectric, coat, the diffuse coupling) ask for the same few α
-  // at every hit, a path's hits alternating between materials; the last few answers are kept per
-  // thread, as the cube root costs ~100 instructions.
-  constexpr int kKept = 8;
-  thread_local std::array<Roughness, kKept> kept = [] {
-    std::array<Roughness, kKept> k;
-    k.fill({std::numeric_limits<float>::quiet_NaN(), 0, 0.f});
-    return k;
-  }();
-  thread_local int next = 0;
-  for (const Roughness& r : kept)
-    if (r.alpha == alpha) return r;
-  const Lerp a = alpha_node(alpha);
-  const Roughness r{alpha, a.i, a.t};
-  kept[next] = r;
-  next = (next + 1) % kKept;
-  return r;
+  // at every hit, a path's hits alternating between materials: the cube root costs ~100 instructions.
+  return kept_per_thread(alpha, [](float a) {
+    const Lerp x = alpha_node(a);
+    return Roughness{a, x.i, x.t};
+  });
 }
 
 SpecularAlbedo::Direction SpecularAlbedo::direction(float mu, const Roughness& r) {
@@ -57,11 +44,6 @@ SpecularAlbedo::Direction SpecularAlbedo::direction(float mu, const Roughness& r
 const SpecularAlbedo& SpecularAlbedo::table() {
   static const SpecularAlbedo t;
   return t;
-}
-
-SpecularAlbedo::Index SpecularAlbedo::index(float eta) {
-  const Lerp h = locate_eta(eta);
-  return {h.i, h.t};
 }
 
 void SpecularAlbedo::E(const Direction& d, int first, int last, bool compensated, std::span<float> out) const {

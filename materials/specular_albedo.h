@@ -49,7 +49,10 @@ class SpecularAlbedo {
     int h;
     float t;
   };
-  static Index index(float eta);
+  static Index index(float eta) {
+    const albedo_tables::Lerp h = albedo_tables::locate_eta(eta);
+    return {h.i, h.t};
+  }
   // Each lane's index placed on the η axis once, when a lobe is built (the lanes' reflectance
   // coupling, pbr_bsdf.h), with the nodes the lanes span, first … last; kept as arrays over the
   // lanes, so that a loop over them runs on all of them at once (SIMD).

@@ -117,7 +117,7 @@ inline float thin_film_reflectance(float cos_theta, float lambda_nm, float d_nm,
 // as a quarter-wave layer's, an interface of index n_f²/η, and η_c is the largest of that and η.
 inline float film_coupling_index(float n_film, float eta) {
   const float quarter_wave = n_film * n_film / eta;
-  return std::max({eta, quarter_wave, 1 / quarter_wave});
+  return std::max(eta, std::max(quarter_wave, 1 / quarter_wave));
 }
 
 // How far a film's reflectance can rise above that interface's Fresnel reflectance F(θ, η_c), at
@@ -148,10 +148,9 @@ inline float film_coupling_index(float n_film, float eta) {
 inline float film_reflectance_excess(float n_film, float eta) {
   using namespace albedo_tables;
   const float u = (n_film - 1) * (kFilmSteps / 2.f), v = (eta - 1) * (kFilmSteps / 2.f);
-  if (!(u >= 0 && v >= 0 && u < kFilmSteps && v < kFilmSteps)) return film_reflectance_excess_exact(n_film, eta);
-  const int a = int(u), b = int(v);
-  const auto at = [&](int i, int j) { return film_excess[(a + i) * (kFilmSteps + 1) + b + j]; };
-  return std::max({at(0, 0), at(0, 1), at(1, 0), at(1, 1)});
+  if (!((u >= 0) & (v >= 0) & (u < kFilmSteps) & (v < kFilmSteps))) return film_reflectance_excess_exact(n_film, eta);
+  const float* e = film_excess + int(u) * (kFilmSteps + 1) + int(v);  // the cell's corner (0, 0), then (1, 0)
+  return std::max(std::max(e[0], e[1]), std::max(e[kFilmSteps + 1], e[kFilmSteps + 2]));
 }
 
 // A ThinFilm for one path's wavelengths, in the units of the front medium (index n_front): the

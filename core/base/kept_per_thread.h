@@ -1,0 +1,47 @@
+#pragma once
+// The last few results of a function of one float, kept per thread: for set-ups that depend on a
+// material's parameter alone (a roughness's place on a table, a lobe's fitted constants), which a
+// path repeats at every hit of the material and which cost more than a look through a few keys.
+
+#include <array>
+#include <limits>
+#include <optional>
+
+namespace prism {
+
+template <class Value, int Kept>
+struct KeptPerThread {
+  std::array<float, Kept> keys;
+  std::array<std::optional<Value>, Kept> values{};
+  int next = 0;
+
+  static constexpr std::array<float, Kept> none = [] {
+    std::array<float, Kept> k{};
+    k.fill(std::numeric_limits<float>::quiet_NaN());  // equal to no key
+    return k;
+  }();
+
+  // A new key's value, kept in place of the oldest (out of line: the look-up stays small).
+  template <class Compute>
+  [[gnu::noinline]] Value keep(float key, const Compute& compute) {
+    const int i = next;
+    keys[i] = key;
+    values[i] = compute(key);
+    next = (i + 1) % Kept;
+    return *values[i];
+  }
+};
+
+// compute(key), or its result kept from an earlier call with the same key (in this thread, for the
+// same compute: each lambda type has its own store). Exact: a key is found only if equal.
+template <int Kept = 8, class Compute>
+auto kept_per_thread(float key, const Compute& compute) {
+  using Store = KeptPerThread<decltype(compute(key)), Kept>;
+  // Initialised as a constant, so that no guard is tested at each call; one store per Compute type.
+  constinit thread_local Store kept{Store::none};
+  for (int i = 0; i < Kept; ++i)
+    if (kept.keys[i] == key) return *kept.values[i];
+  return kept.keep(key, compute);
+}
+
+}  // namespace prism
