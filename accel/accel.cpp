@@ -84,7 +84,7 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
     const AffineTransform& m = instances[i].to_world;
     for (uint32_t p = 0; p < triangles_of(instances[i].mesh); ++p) {
       for (int k = 0; k < 3; ++k)
-        world_triangles[world_first[i] + p][k] = Vec3f(m.point(Vec3d(mesh.positions[mesh.indices[3 * p + k]])));
+        world_triangles[world_first[i] + p][k] = m.point_rounded(mesh.positions[mesh.indices[3 * p + k]]);
       world_ids[world_first[i] + p] = first_prim_[i] + p;
     }
   });
@@ -205,7 +205,7 @@ bool Accel::intersect(const Ray& ray, AccelHit& hit) const {
     const simd::f8* v = closest.block->v[k];
     hit.v[k] = {v[0][closest.lane], v[1][closest.lane], v[2][closest.lane]};
     // A shared mesh's triangle, in its own space: to world space as the flattened ones were.
-    if (closest.instance != kWorld) hit.v[k] = Vec3f(instances_[instance].to_world.point(Vec3d(hit.v[k])));
+    if (closest.instance != kWorld) hit.v[k] = instances_[instance].to_world.point_rounded(hit.v[k]);
   }
   return true;
 }

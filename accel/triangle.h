@@ -22,13 +22,13 @@ struct WatertightRay {
   float ox, oy, oz;  // the origin in the permuted axes
   float sx, sy, sz;
 
-  // Without a branch on the direction (max_dimension's and Vec3::operator[]'s, mispredicted
+  // Without a branch on the direction (a choice of the largest axis and Vec3::operator[], mispredicted
   // about every other time for random directions): the axes are picked by arithmetic on the
   // comparisons, the coordinates read from arrays.
   explicit WatertightRay(const Ray& ray) {
     const float d[3] = {ray.d.x, ray.d.y, ray.d.z}, o[3] = {ray.o.x, ray.o.y, ray.o.z};
     const float ax = std::abs(d[0]), ay = std::abs(d[1]), az = std::abs(d[2]);
-    // max_dimension(|d|): x if ax > ay and ax > az, else y if ay > az (and ax <= ay), else z.
+    // The largest axis of |d|: x if ax > ay and ax > az, else y if ay > az (and ax <= ay), else z.
     const int x_largest = (ax > ay) & (ax > az), y_largest = !(ax > ay) & (ay > az);
     kz = 2 - 2 * x_largest - y_largest;
     // The other two axes in cyclic order, swapped when d[kz] < 0 to keep the sheared triangle's winding.

@@ -37,6 +37,9 @@ struct AffineTransform {
   double determinant() const;           // of the linear part: < 0 means the transform mirrors
   Vec3d point(const Vec3d& p) const;
   Vec3d vector(const Vec3d& v) const;
+  // A float point transformed in double and rounded once: how the accel places a mesh's triangles
+  // in world space, so that World's lights and shading points are the very triangles rays hit.
+  Vec3f point_rounded(const Vec3f& p) const { return Vec3f(point(Vec3d(p))); }
   bool operator==(const AffineTransform&) const = default;
 };
 

@@ -119,10 +119,6 @@ template <typename T>
 Vec3<T> abs(const Vec3<T>& v) {
   return {std::abs(v.x), std::abs(v.y), std::abs(v.z)};
 }
-template <typename T>
-constexpr int max_dimension(const Vec3<T>& v) {
-  return v.x > v.y ? (v.x > v.z ? 0 : 2) : (v.y > v.z ? 1 : 2);
-}
 
 // n flipped, if needed, to lie in the hemisphere of v.
 template <typename T>

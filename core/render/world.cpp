@@ -58,7 +58,7 @@ World::World(const Scene& scene, const AccelOptions& accel)
 std::array<Vec3f, 3> World::world_vertices(const Instance& inst, uint32_t prim) const {
   const Mesh& m = scene_.meshes[inst.mesh];
   std::array<Vec3f, 3> v;
-  for (int k = 0; k < 3; ++k) v[k] = Vec3f(inst.to_world.point(Vec3d(m.positions[m.indices[3 * prim + k]])));
+  for (int k = 0; k < 3; ++k) v[k] = inst.to_world.point_rounded(m.positions[m.indices[3 * prim + k]]);
   return v;
 }
 

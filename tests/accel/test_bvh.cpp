@@ -56,7 +56,7 @@ struct TestScene {
       const Soup& s = meshes[inst.mesh];
       for (size_t p = 0; p < s.indices.size() / 3; ++p) {
         Triangle t = s.triangle(p);
-        for (Vec3f& v : t) v = Vec3f(inst.to_world.point(Vec3d(v)));
+        for (Vec3f& v : t) v = inst.to_world.point_rounded(v);
         out.push_back(t);
       }
     }
