@@ -123,16 +123,6 @@ class Sampler {
   static constexpr uint32_t kCameraDimensions = 2, kBounceDimensions = 8;
   void start_bounce(int depth) { dimension_ = kCameraDimensions + uint32_t(depth) * kBounceDimensions; }
 
-  // Moves on past the next 2D draw as get_2d would, for a caller that drew it before (the
-  // renderer draws a batch of samples' pixel jitter first).
-  void skip_2d() {
-    if (kind_ == SamplerKind::independent) {
-      rng_.advance(2);
-      return;
-    }
-    ++dimension_;
-  }
-
   float get_1d() {
     if (kind_ == SamplerKind::independent) return rng_.uniform();
     const uint64_t h = dimension_hash();

@@ -60,7 +60,6 @@ struct CameraSample {
   SampledWavelengths<N> lambda;
   SampledSpectrum<N> L;
   Xyz xyz;
-  Ray ray;
 };
 
 // The bidirectional estimator's scene, the thread's splat buffer, and for VCM the iteration's
@@ -135,7 +134,6 @@ std::optional<CameraSample<N>> camera_sample(const World& world, const RenderOpt
   }
   const Vec2f u_lambda = sampler.get_2d();  // the camera's second dimension, drawn only for a path that needs it
   CameraSample<N> c;
-  c.ray = ray;
   c.lambda = bdpt.lambda ? *bdpt.lambda : SampledWavelengths<N>::sample(u_lambda);
   c.L = bdpt.scene ? bdpt_radiance<N>(*bdpt.scene, ray, c.lambda, sampler, options.path, bdpt.vcm, *bdpt.splats, rays,
                                       bdpt.invalid)
@@ -193,24 +191,23 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
       for (int64_t k0 = first; k0 < last; k0 += kRayBatch) {
         const int64_t k1 = std::min(k0 + kRayBatch, last);
         std::array<Ray, kRayBatch> rays;
+        std::array<Sampler, kRayBatch> samplers;  // each sample's, past its jitter
         for (int64_t k = k0; k < k1; ++k) {
           if (replicates > 1 || k == first) sampler.start_pixel({x, y}, int(k % replicates));
           rays[k - k0] = camera_ray(camera, sampler, {x, y}, int(k / replicates));
+          samplers[k - k0] = sampler;
         }
         for (int64_t k = k0; k < k1; ++k) {
-          const int s = int(k / replicates), r = int(k % replicates);
-          if (replicates > 1) sampler.start_pixel({x, y}, r);
-          sampler.start_sample(s);
-          sampler.skip_2d();  // the jitter
+          const int r = int(k % replicates);
           const std::optional<CameraSample<N>> c =
-              camera_sample<N>(world, options, radiance, sky, bdpt, sampler, rays[k - k0], stats.rays);
+              camera_sample<N>(world, options, radiance, sky, bdpt, samplers[k - k0], rays[k - k0], stats.rays);
           ++stats.samples;
           if (!c) {
             ++sky_samples[r];
             continue;
           }
           FilmSample fs{c->xyz};
-          if (first_hits) first_hit<N>(world, c->ray, c->lambda, fs);
+          if (first_hits) first_hit<N>(world, rays[k - k0], c->lambda, fs);
           if (!film.add(p, fs, r)) ++stats.invalid;
           if (bins)
             for (int i = 0; i < N; ++i)
