@@ -392,6 +392,12 @@ class LayeredBsdf {
         s->pdf *= p[0];
         return s;
       }
+      // A tilted coat's own f and pdf are those at wi back in its frame, as eval finds them (the
+      // round trip through the frame rounds).
+      if (coat_tilted_) {
+        const BsdfEval<N> c = coat_.eval(to_coat(wo, wo), to_coat(wo, s->wi));
+        s->f = c.f, s->pdf = c.pdf;
+      }
     } else if (uc < p[0] + p[1]) {
       s = sheen_.sample_f(wo, 0, u);
       layer = 1;

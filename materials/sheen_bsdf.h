@@ -77,7 +77,6 @@ class SheenBsdf {
  public:
   SheenBsdf(const SampledSpectrum<N>& color, const SheenRoughness& roughness)
       : color_(color * roughness.scale), charlie_(roughness.charlie) {}
-  SheenBsdf(const SampledSpectrum<N>& color, float alpha) : SheenBsdf(color, SheenRoughness::of(alpha)) {}
 
   bool is_specular() const { return false; }
   DeltaLobes<N> delta_lobes(const Vec3f&) const { return {}; }

@@ -6,6 +6,7 @@
 #include <array>
 #include <limits>
 #include <optional>
+#include <type_traits>
 
 namespace prism {
 
@@ -33,9 +34,13 @@ struct KeptPerThread {
 };
 
 // compute(key), or its result kept from an earlier call with the same key (in this thread, for the
-// same compute: each lambda type has its own store). Exact: a key is found only if equal.
+// same compute: each lambda type has its own store). Exact: a key is found only if equal, so
+// compute must be a function of the key alone (a lambda without captures), giving the same for −0
+// as for +0 (equal keys). NaN keys are never found, so always computed (the build has no
+// -ffinite-math-only, which would break the NaN marking an empty place).
 template <int Kept = 8, class Compute>
 auto kept_per_thread(float key, const Compute& compute) {
+  static_assert(std::is_empty_v<Compute>, "kept_per_thread: compute must depend on the key alone");
   using Store = KeptPerThread<decltype(compute(key)), Kept>;
   // Initialised as a constant, so that no guard is tested at each call; one store per Compute type.
   constinit thread_local Store kept{Store::none};

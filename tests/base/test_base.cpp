@@ -94,6 +94,7 @@ TEST_CASE("the balance heuristic's weights of two strategies sum to 1, an infini
     CHECK(balance_heuristic(a, b) + balance_heuristic(b, a) == Approx(1));
   }
   CHECK(balance_heuristic(1, 1) == 0.5f);
+  CHECK(balance_heuristic(1, 3) == 0.25f);  // the power heuristic would give 0.1
   CHECK(balance_heuristic(INFINITY, 3) == 1);
   CHECK(balance_heuristic(0, 0) == 0);
 }

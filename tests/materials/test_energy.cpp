@@ -35,10 +35,10 @@ struct Case {
 
 SampledWavelengths<N> wavelengths() { return SampledWavelengths<N>::sample({0.48f, 0.37f}); }
 
-Bsdf<N> bsdf_of(const PbrMaterial& m, float front_ior = 1) {
+Bsdf<N> bsdf_of(const PbrMaterial& m, float front_ior = 1, const SurfacePoint& at = {}) {
   auto lambda = wavelengths();
   const Dielectric front(ConstantIor{front_ior});
-  return make_bsdf(Material{"m", m, {}, false}, {}, lambda, front_ior == 1 ? nullptr : &front);
+  return make_bsdf(Material{"m", m, {}, false}, at, lambda, front_ior == 1 ? nullptr : &front);
 }
 
 Clearcoat clearcoat(float factor, float roughness) {
@@ -366,7 +366,16 @@ TEST_CASE("a BSDF sample and eval carry exactly what f and pdf give on their own
   // and pdf: each must give exactly what f and pdf give on their own. (A mixture's f is its eval's
   // f, so there the first check holds by construction; its pdf is summed on its own.)
   Rng rng(37, 0);
-  for (const Case& c : cases()) {
+  std::vector<Case> all = cases();
+  for (float roughness : {0.05f, 0.3f, 1.f})  // a coat normal map's tilt: the coat in a frame of its own
+    all.push_back({"clearcoat with a tilted normal, roughness " + std::to_string(roughness), [=] {
+                     PbrMaterial m = PbrMaterial::plastic({0.8f, 0.1f, 0.1f}, 0.5f);
+                     m.clearcoat = clearcoat(1, roughness);
+                     SurfacePoint at;
+                     at.coat_normal = normalize(Vec3f(0.3f, -0.2f, 1));
+                     return bsdf_of(m, 1, at);
+                   }});
+  for (const Case& c : all) {
     const Bsdf<N> b = c.make();
     for (int k = 0; k < 100; ++k) {
       const Vec3f wo = sample_uniform_sphere({rng.uniform(), rng.uniform()});
