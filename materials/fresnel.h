@@ -84,11 +84,11 @@ inline FresnelReflectance fresnel_conductor_polarized(float cos_theta_i, float n
   const double n2 = double(n) * n, k2 = double(k) * k, t0 = n2 - k2 - s2;
   const double a2b2 = std::sqrt(t0 * t0 + 4 * n2 * k2), a = std::sqrt(std::max(0.0, (a2b2 + t0) / 2));
   const double t1 = a2b2 + c2, t2 = 2 * c * a, t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
-  const bool ideal = (n == 0) & (k == 0);  // η = 0: the ideal-conductor limit, R = 1
+  // (η = 0, the ideal conductor, needs no case of its own: a = 0, so t2 = t4 = 0 and R = 1.)
   const double rs = std::min(1.0, (t1 - t2) / (t1 + t2));
-  const double Rs = ideal | (t1 + t2 == 0) ? 1.0 : rs;
+  const double Rs = t1 + t2 == 0 ? 1.0 : rs;
   const double rp = std::min(1.0, Rs * (t3 - t4) / (t3 + t4));
-  const double Rp = ideal | (t3 + t4 == 0) ? 1.0 : rp;
+  const double Rp = t3 + t4 == 0 ? 1.0 : rp;
   return {float((Rs + Rp) / 2), float(Rs), float(Rp)};
 }
 

@@ -149,7 +149,8 @@ inline float film_reflectance_excess(float n_film, float eta) {
   using namespace albedo_tables;
   const float u = (n_film - 1) * (kFilmSteps / 2.f), v = (eta - 1) * (kFilmSteps / 2.f);
   if (!((u >= 0) & (v >= 0) & (u < kFilmSteps) & (v < kFilmSteps))) return film_reflectance_excess_exact(n_film, eta);
-  const float* e = film_excess + int(u) * (kFilmSteps + 1) + int(v);  // the cell's corner (0, 0), then (1, 0)
+  // The cell's four corners: e[0] at (a, b), e[1] at (a, b + 1), and the next row's two.
+  const float* e = film_excess + int(u) * (kFilmSteps + 1) + int(v);
   return std::max(std::max(e[0], e[1]), std::max(e[kFilmSteps + 1], e[kFilmSteps + 2]));
 }
 

@@ -154,6 +154,13 @@ TEST_CASE("Fresnel equations stay finite and between 0 and 1 on extreme inputs")
   CHECK(fresnel_dielectric(0, 1.5f) == Approx(1));
   CHECK(fresnel_conductor(0, 0.2f, 3.f) == Approx(1));
   CHECK(fresnel_conductor(1, 1.f, 1e3f) == Approx(1).margin(1e-5));
+  // η = 0, the ideal-conductor limit: everything, both polarisations, at every angle.
+  for (const float c : {0.f, 0.3f, 0.7071f, 1.f}) {
+    const FresnelReflectance r = fresnel_conductor_polarized(c, 0, 0);
+    CHECK(r.R == 1);
+    CHECK(r.Rs == 1);
+    CHECK(r.Rp == 1);
+  }
   // Huge index ratios reflect almost everything at normal incidence: ((η−1)/(η+1))².
   CHECK(fresnel_dielectric(1, 1e3f) == Approx(sqr((1e3 - 1) / (1e3 + 1))).epsilon(1e-5));
   CHECK(fresnel_dielectric(1, 1e-3f) == Approx(sqr((1e-3 - 1) / (1e-3 + 1))).epsilon(1e-5));
