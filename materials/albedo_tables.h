@@ -24,7 +24,14 @@ inline Lerp locate(float v, float hi, int n) {
   const int i = std::min(int(x), n - 2);
   return {i, x - float(i)};
 }
-inline Lerp locate_eta(float eta) { return locate((eta - 1) / (eta + 1) + kMaxX, 2 * kMaxX, kEta); }
+// The same for η, without branches, so that a loop over a path's lanes runs on all of them at once
+// (SpecularAlbedo::Lanes; clamping x before converting it, GCC would branch): (η − 1)/(η + 1) ∈ [−1, 1]
+// for any η ≥ 0, so x lies within the grid's span either side of it and converts exactly.
+inline Lerp locate_eta(float eta) {
+  const float x = ((eta - 1) / (eta + 1) + kMaxX) / (2 * kMaxX) * float(kEta - 1);
+  const int i = std::clamp(int(x), 0, kEta - 2);
+  return {i, std::min(std::max(x - float(i), 0.f), 1.f)};
+}
 inline float eta_of(int h) {
   const float x = 2 * kMaxX * float(h) / (kEta - 1) - kMaxX;
   return (1 + x) / (1 - x);
@@ -82,7 +89,8 @@ inline float sheen_mu_of(int m) {
 }
 
 // Thin film: the most its reflectance exceeds its coupling interface's (film_reflectance_excess,
-// thin_film.h), on nodes 0.05 apart in the film's and the base's indices n_f, η ∈ [1, 3].
+// thin_film.h), on nodes 0.05 apart in the film's and the base's indices n_f, η ∈ [1, 3], kept as
+// each cell's largest corner (one read bounds the excess anywhere in the cell).
 constexpr int kFilmSteps = 40;
 constexpr float kFilmStep = 2.f / kFilmSteps;
 inline float film_index_of(int a) { return 1 + float(a) * kFilmStep; }
@@ -92,6 +100,6 @@ extern const Slice specular[kEta];
 extern const Grid specular_white;  // reflection with F = 1
 extern const float sheen_e[kSheenAlpha * kSheenMu];
 extern const float sheen_scale[kSheenAlpha];
-extern const float film_excess[(kFilmSteps + 1) * (kFilmSteps + 1)];  // [n_f node][η node]
+extern const float film_excess[kFilmSteps * kFilmSteps];  // [n_f cell][η cell]
 
 }  // namespace prism::albedo_tables

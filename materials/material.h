@@ -195,17 +195,21 @@ inline bool disperses(const Material& m, const Dielectric* front) {
   return d && (d->dispersive || (front && front->dispersive));
 }
 
-// The relative index η ≥ 1 whose normal-incidence reflectance ((η − 1)/(η + 1))² is f0.
-inline float ior_from_f0(float f0) {
-  const float root = std::sqrt(std::clamp(f0, 0.f, 0.9999f));  // F0 = 1: η → ∞
-  return (1 + root) / (1 - root);
-}
-// The relative index η' whose exact normal-incidence reflectance is that of η times c (at most
-// 1): KHR_materials_specular's coloured F0, on η's side of 1.
-// (Inline: make_bsdf finds one per lane at every hit of a specular colour.)
-inline float ior_with_scaled_f0(float eta, float c) {
-  const float scaled = ior_from_f0(sqr((eta - 1) / (eta + 1)) * std::max(c, 0.f));
-  return eta < 1 ? 1 / scaled : scaled;
+// Each lane's relative index η'_λ whose exact normal-incidence reflectance is that of η times c_λ
+// (at most 1): KHR_materials_specular's coloured F0, on η's side of 1. The index η ≥ 1 of
+// reflectance F0 = ((η − 1)/(η + 1))² is (1 + √F0)/(1 − √F0) (F0 = 1: η → ∞). Two loops over the
+// lanes, each run on all lanes at once (in one, GCC turns the clamp's constant ends into branches
+// and leaves the lanes one by one).
+template <int N>
+SampledSpectrum<N> ior_with_scaled_f0(float eta, const SampledSpectrum<N>& c) {
+  const float f0 = sqr((eta - 1) / (eta + 1));
+  SampledSpectrum<N> root, scaled;
+  for (int i = 0; i < N; ++i) root[i] = std::sqrt(std::min(std::max(f0 * std::max(c[i], 0.f), 0.f), 0.9999f));
+  for (int i = 0; i < N; ++i) {
+    const float s = (1 + root[i]) / (1 - root[i]);
+    scaled[i] = eta < 1 ? 1 / s : s;
+  }
+  return scaled;
 }
 
 // The n, k of a metal whose normal-incidence reflectance is r: Gulbrandsen's parametrisation
@@ -286,18 +290,14 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
     lanes->film = film_lanes;
     SampledSpectrum<N> reflecting(eta);
     if (p.specular_color != Rgb{1, 1, 1}) {
-      const SampledSpectrum<N> tint = sampled(constant.specular_color, p.specular_color);
-      for (int i = 0; i < N; ++i) reflecting[i] = ior_with_scaled_f0(eta, tint[i]);
+      reflecting = ior_with_scaled_f0(eta, sampled(constant.specular_color, p.specular_color));
       lanes->eta = reflecting;
     }
     if ((1 - p.metallic) * (1 - p.transmission) > 0) {  // only a diffuse base of some weight is coupled
       extras.lane_etas = reflecting;
       if (film) {  // coupled as an interface of the film's peak reflectance, and its excess (thin_film.h)
-        extras.lane_excess.emplace();
-        for (int i = 0; i < N; ++i) {
-          (*extras.lane_etas)[i] = film_coupling_index(film_lanes->ior[i], reflecting[i]);
-          (*extras.lane_excess)[i] = p.iridescence * film_reflectance_excess(film_lanes->ior[i], reflecting[i]);
-        }
+        extras.lane_excess = film_reflectance_excess(film_lanes->ior, reflecting) * p.iridescence;
+        for (int i = 0; i < N; ++i) (*extras.lane_etas)[i] = film_coupling_index(film_lanes->ior[i], reflecting[i]);
       }
     }
   }

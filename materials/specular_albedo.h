@@ -62,12 +62,12 @@ class SpecularAlbedo {
     std::array<int, N> h;
     int first, last;
 
-    explicit Lanes(const std::array<float, N>& etas) : eta(etas), first(albedo_tables::kEta), last(0) {
+    explicit Lanes(const std::array<float, N>& etas) : eta(etas) {
       for (int i = 0; i < N; ++i) {
         const Index x = index(eta[i]);
         h[i] = x.h, t[i] = x.t;
-        first = std::min(first, x.h), last = std::max(last, x.h + 1);
       }
+      first = *std::min_element(h.begin(), h.end()), last = *std::max_element(h.begin(), h.end()) + 1;
     }
     // Each lane's value of a quantity known at the nodes first … last (value[k − first]),
     // interpolated to its index, v_λ = (1 − t_λ) v_h + t_λ v_{h+1}: each lane picks its two nodes'

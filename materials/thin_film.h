@@ -149,9 +149,27 @@ inline float film_reflectance_excess(float n_film, float eta) {
   using namespace albedo_tables;
   const float u = (n_film - 1) * (kFilmSteps / 2.f), v = (eta - 1) * (kFilmSteps / 2.f);
   if (!((u >= 0) & (v >= 0) & (u < kFilmSteps) & (v < kFilmSteps))) return film_reflectance_excess_exact(n_film, eta);
-  // The cell's four corners: e[0] at (a, b), e[1] at (a, b + 1), and the next row's two.
-  const float* e = film_excess + int(u) * (kFilmSteps + 1) + int(v);
-  return std::max(std::max(e[0], e[1]), std::max(e[kFilmSteps + 1], e[kFilmSteps + 2]));
+  return film_excess[int(u) * kFilmSteps + int(v)];
+}
+// The same for each lane's indices: when all fall in the table, one loop without branches or
+// calls (vector code, a gather); else lane by lane.
+template <int N>
+SampledSpectrum<N> film_reflectance_excess(const SampledSpectrum<N>& n_film, const SampledSpectrum<N>& eta) {
+  using namespace albedo_tables;
+  std::array<int, N> inside, cell;
+  for (int i = 0; i < N; ++i) {
+    const float u = (n_film[i] - 1) * (kFilmSteps / 2.f), v = (eta[i] - 1) * (kFilmSteps / 2.f);
+    inside[i] = (u >= 0) & (v >= 0) & (u < kFilmSteps) & (v < kFilmSteps);
+    cell[i] = inside[i] ? int(u) * kFilmSteps + int(v) : 0;
+  }
+  int all = 1;
+  for (int i = 0; i < N; ++i) all &= inside[i];
+  SampledSpectrum<N> x;
+  if (all)
+    for (int i = 0; i < N; ++i) x[i] = film_excess[cell[i]];
+  else
+    for (int i = 0; i < N; ++i) x[i] = film_reflectance_excess(n_film[i], eta[i]);
+  return x;
 }
 
 // A ThinFilm for one path's wavelengths, in the units of the front medium (index n_front): the

@@ -88,9 +88,13 @@ TEST_CASE("thin film: a quarter-wave film of index √n on glass is an anti-refl
 
 TEST_CASE("thin film: the build-time excess table is the direct computation, and bounds the film over its coupling") {
   using namespace albedo_tables;
-  for (const auto& [a, b] : {std::pair{0, 0}, {10, 10}, {16, 10}, {33, 7}, {40, 40}, {5, 38}})
-    CHECK(film_excess[a * (kFilmSteps + 1) + b] ==
-          Approx(film_reflectance_excess_exact(film_index_of(a), film_index_of(b))).margin(1e-6));
+  // Each cell holds the largest of the direct computation at its four corners.
+  for (const auto& [a, b] : {std::pair{0, 0}, {10, 10}, {16, 10}, {33, 7}, {39, 39}, {5, 38}}) {
+    float corners = 0;
+    for (const auto& [da, db] : {std::pair{0, 0}, {0, 1}, {1, 0}, {1, 1}})
+      corners = std::max(corners, film_reflectance_excess_exact(film_index_of(a + da), film_index_of(b + db)));
+    CHECK(film_excess[a * kFilmSteps + b] == Approx(corners).margin(1e-6));
+  }
   // Between the nodes, the lookup (a cell's largest corner) still bounds what the film reflects
   // above F(θ, η_c), at any thickness and angle (checked against the double-precision reference).
   for (const auto& [nf, eta] : {std::pair{1.83, 1.47}, {1.31, 1.52}, {2.37, 1.12}}) {
@@ -103,6 +107,14 @@ TEST_CASE("thin film: the build-time excess table is the direct computation, and
         worst = std::max(worst, tmm(c, 550, d, 1, nf, eta) - fresnel_dielectric(float(c), float(eta_c)));
       }
     CHECK(worst <= x + 1e-4);
+  }
+  // The lanes' lookup is the one-lane lookup on each lane, with all lanes in the table or some outside it.
+  SampledSpectrum<8> nf, eta;
+  for (int i = 0; i < 8; ++i) nf[i] = 1.2f + 0.17f * float(i), eta[i] = 2.9f - 0.23f * float(i);
+  for (int outside : {0, 1}) {
+    if (outside) eta[5] = 3.4f;
+    const SampledSpectrum<8> x = film_reflectance_excess(nf, eta);
+    for (int i = 0; i < 8; ++i) CHECK(x[i] == film_reflectance_excess(nf[i], eta[i]));
   }
 }
 
