@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
+#include <string_view>
 #include <tuple>
 #include <unordered_map>
 
 #include "accel/triangle.h"
-#include "base/checksum.h"
 #include "base/error.h"
 #include "base/frame.h"
 #include "base/rng.h"
@@ -56,15 +56,21 @@ bool same_shading_arrays(const Mesh& a, const Mesh& b) {
       shading_arrays(a));
 }
 
-// For every mesh, the first mesh with the same shading arrays: grouped by a checksum of them, then
+// For every mesh, the first mesh with the same shading arrays: grouped by a hash of them, then
 // compared in full.
 std::vector<const Mesh*> attribute_meshes(const std::vector<Mesh>& meshes) {
   std::vector<const Mesh*> out;
   std::unordered_map<uint64_t, std::vector<const Mesh*>> firsts;
   for (const Mesh& m : meshes) {
-    Checksum sum;
-    std::apply([&](const auto&... v) { (sum.add(v.data(), v.size() * sizeof(v[0])), ...); }, shading_arrays(m));
-    std::vector<const Mesh*>& group = firsts[sum.h];
+    uint64_t key = 0;  // std::hash of bytes: 12 ms for MetalRoughSpheres' 25 MB, where FNV-1a took 150 ms
+    std::apply(
+        [&](const auto&... v) {
+          ((key = hash_continue(key, std::hash<std::string_view>{}(std::string_view(
+                                         reinterpret_cast<const char*>(v.data()), v.size() * sizeof(v[0]))))),
+           ...);
+        },
+        shading_arrays(m));
+    std::vector<const Mesh*>& group = firsts[key];
     const auto first = std::find_if(group.begin(), group.end(), [&](const Mesh* g) { return same_shading_arrays(m, *g); });
     out.push_back(first != group.end() ? *first : group.emplace_back(&m));
   }
