@@ -112,20 +112,29 @@ class PbrBsdf {
     }
     const float e_o = E_o(wo.z);
     const auto p = lobe_probabilities(e_o);
+    // The lobe is chosen by u.x, rescaled within the lobe's interval for the lobe's own sample (as
+    // Cycles does): the points that choose a lobe then still cover its square evenly, where a
+    // separate choice number uc picked a random subset of them (uc stays for the lobe's own choice).
+    const auto choose = [&](float lo, float width) {
+      u.x = width > 0 ? std::clamp((u.x - lo) / width, 0.f, 0.99999994f) : 0.f;
+    };
     std::optional<BsdfSample<N>> s;
     BsdfEval<N> e;
-    if (uc < p[0]) {
-      s = metal_.sample_f(wo, uc / p[0], u);
+    if (u.x < p[0]) {
+      choose(0, p[0]);
+      s = metal_.sample_f(wo, uc, u);
       if (!s) return std::nullopt;
       if (s->specular) return scaled(*s, metallic_, p[0]);
       e = mixture(wo, s->wi, p, e_o, Sampled{0, {s->f, s->pdf}});
-    } else if (uc < p[0] + p[1]) {
-      s = dielectric_.sample_f(wo, std::min((uc - p[0]) / p[1], 0.99999994f), u);
+    } else if (u.x < p[0] + p[1]) {
+      choose(p[0], p[1]);
+      s = dielectric_.sample_f(wo, uc, u);
       if (!s) return std::nullopt;
       if (s->specular) return scaled(*s, 1 - metallic_, p[1]);
       e = mixture(wo, s->wi, p, e_o, Sampled{1, {s->f, s->pdf}});
     } else {  // the diffuse base: reflected (p[2]) or transmitted to the far side (p[3])
-      const bool far_side = Extensions && uc >= 1 - p[3];
+      const bool far_side = Extensions && u.x >= 1 - p[3];
+      choose(far_side ? 1 - p[3] : p[0] + p[1], far_side ? p[3] : p[2]);
       Vec3f wi = sample_cosine_hemisphere(u);
       if ((wo.z < 0) != far_side) wi.z = -wi.z;
       s = BsdfSample<N>{{}, wi, 0.f, false, far_side};
