@@ -30,24 +30,28 @@ SurfaceInteraction hit_below(const World& world, float x) {
 
 TEST_CASE("World: meshes with copied shading arrays keep their own materials and differences") {
   Scene scene;
-  for (int i = 0; i < 4; ++i) scene.materials.push_back(test::diffuse(Rgb{0.2f * (i + 1), 0.5f, 0.5f}));
+  for (int i = 0; i < 6; ++i) scene.materials.push_back(test::diffuse(Rgb{0.1f * (i + 1), 0.5f, 0.5f}));
+  PbrMaterial brushed = PbrMaterial::plastic(Rgb{0.5f, 0.5f, 0.5f}, 0.5f);
+  brushed.anisotropy_strength = 0.5f;  // reads the tangents
+  scene.materials.push_back(Material{.name = "brushed", .kind = brushed});
   const Vec3f tilted = normalize(Vec3f{0.3f, 0, 1});
-  test::add_mesh(scene, quad_at(-3, 0));              // the first of its kind
-  test::add_mesh(scene, quad_at(0, 1));               // a copy but for its material
-  test::add_mesh(scene, quad_at(3, 2, 2));            // other texture coordinates
-  test::add_mesh(scene, quad_at(6, 3, 1, tilted));    // other normals
+  test::add_mesh(scene, quad_at(-3, 0));            // the first of its kind
+  test::add_mesh(scene, quad_at(0, 1));             // a copy but for its material
+  test::add_mesh(scene, quad_at(3, 2, 2));          // other TEXCOORD_0
+  test::add_mesh(scene, quad_at(6, 3, 1, tilted));  // other normals
+  Mesh uv1 = quad_at(9, 4), colored = quad_at(12, 5), tangents = quad_at(15, 6);
+  uv1.uv[1] = {{0, 0}, {3, 0}, {3, 3}, {0, 3}};
+  colored.colors.assign(4, {0.25f, 0.5f, 0.75f, 1});
+  tangents.tangents.assign(4, {0, 1, 0, 1});
+  for (Mesh* m : {&uv1, &colored, &tangents}) test::add_mesh(scene, std::move(*m));
   const World world(scene);
 
-  const SurfaceInteraction a = hit_below(world, -2), b = hit_below(world, 1), c = hit_below(world, 4),
-                           d = hit_below(world, 7);
-  CHECK(a.material == &scene.materials[0]);
-  CHECK(b.material == &scene.materials[1]);
-  CHECK(c.material == &scene.materials[2]);
-  CHECK(d.material == &scene.materials[3]);
-  CHECK(b.at.uv[0].x == Approx(a.at.uv[0].x));
-  CHECK(c.at.uv[0].x == Approx(2 * a.at.uv[0].x));
-  CHECK(c.at.uv[0].y == Approx(2 * a.at.uv[0].y));
-  CHECK(a.ns.z == Approx(1));
-  CHECK(d.ns.x == Approx(tilted.x));
-  CHECK(d.ns.z == Approx(tilted.z));
+  for (int i = 0; i < 7; ++i) CHECK(hit_below(world, -2 + 3 * i).material == &scene.materials[i]);
+  const SurfaceInteraction a = hit_below(world, -2);
+  CHECK(hit_below(world, 4).at.uv[0].x == Approx(2 * a.at.uv[0].x));
+  CHECK(hit_below(world, 4).at.uv[0].y == Approx(2 * a.at.uv[0].y));
+  CHECK(hit_below(world, 7).ns.x == Approx(tilted.x));
+  CHECK(hit_below(world, 10).at.uv[1].x == Approx(3 * a.at.uv[0].x));
+  CHECK(hit_below(world, 13).at.vertex_color[2] == Approx(0.75f));
+  CHECK(hit_below(world, 16).tangent.y == Approx(1));
 }
