@@ -143,30 +143,29 @@ inline float film_coupling_index(float n_film, float eta) {
   return x;
 }
 
-// The same, tabulated over n_f, η ∈ [1, 3] at build time (albedo_tables.h) and read as the largest
-// of a cell's corners; outside the table, computed.
-inline float film_reflectance_excess(float n_film, float eta) {
+// The excess table's cell (albedo_tables.h) holding n_f, η, or −1 outside the table.
+inline int film_excess_cell(float n_film, float eta) {
   using namespace albedo_tables;
   const float u = (n_film - 1) * (kFilmSteps / 2.f), v = (eta - 1) * (kFilmSteps / 2.f);
-  if (!((u >= 0) & (v >= 0) & (u < kFilmSteps) & (v < kFilmSteps))) return film_reflectance_excess_exact(n_film, eta);
-  return film_excess[int(u) * kFilmSteps + int(v)];
+  return (u >= 0) & (v >= 0) & (u < kFilmSteps) & (v < kFilmSteps) ? int(u) * kFilmSteps + int(v) : -1;
+}
+// The same, tabulated over n_f, η ∈ [1, 3] at build time and read as the largest of a cell's
+// corners; outside the table, computed.
+inline float film_reflectance_excess(float n_film, float eta) {
+  const int cell = film_excess_cell(n_film, eta);
+  return cell < 0 ? film_reflectance_excess_exact(n_film, eta) : albedo_tables::film_excess[cell];
 }
 // The same for each lane's indices: when all fall in the table, one loop without branches or
 // calls (vector code, a gather); else lane by lane.
 template <int N>
 SampledSpectrum<N> film_reflectance_excess(const SampledSpectrum<N>& n_film, const SampledSpectrum<N>& eta) {
-  using namespace albedo_tables;
-  std::array<int, N> inside, cell;
-  for (int i = 0; i < N; ++i) {
-    const float u = (n_film[i] - 1) * (kFilmSteps / 2.f), v = (eta[i] - 1) * (kFilmSteps / 2.f);
-    inside[i] = (u >= 0) & (v >= 0) & (u < kFilmSteps) & (v < kFilmSteps);
-    cell[i] = inside[i] ? int(u) * kFilmSteps + int(v) : 0;
-  }
+  std::array<int, N> cell;
+  for (int i = 0; i < N; ++i) cell[i] = film_excess_cell(n_film[i], eta[i]);
   int all = 1;
-  for (int i = 0; i < N; ++i) all &= inside[i];
+  for (int i = 0; i < N; ++i) all &= cell[i] >= 0;
   SampledSpectrum<N> x;
   if (all)
-    for (int i = 0; i < N; ++i) x[i] = film_excess[cell[i]];
+    for (int i = 0; i < N; ++i) x[i] = albedo_tables::film_excess[cell[i]];
   else
     for (int i = 0; i < N; ++i) x[i] = film_reflectance_excess(n_film[i], eta[i]);
   return x;
