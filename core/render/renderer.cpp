@@ -177,6 +177,10 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
   const bool first_hits = options.aovs & (kAovAlbedo | kAovNormal | kAovDepth);
   const int bins = film.bins().count();
   const int x1 = std::min(x0 + kTileSize, camera.width()), y1 = std::min(y0 + kTileSize, camera.height());
+  // A batch's camera rays and each sample's sampler past its jitter (made once per tile: each
+  // batch writes the entries it reads).
+  std::array<Ray, kRayBatch> rays;
+  std::array<Sampler, kRayBatch> samplers;
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
       const size_t p = size_t(y) * camera.width() + x;
@@ -190,8 +194,6 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
       const int64_t last = int64_t(end) * replicates;
       for (int64_t k0 = first; k0 < last; k0 += kRayBatch) {
         const int64_t k1 = std::min(k0 + kRayBatch, last);
-        std::array<Ray, kRayBatch> rays;
-        std::array<Sampler, kRayBatch> samplers;  // each sample's, past its jitter
         for (int64_t k = k0; k < k1; ++k) {
           if (replicates > 1 || k == first) sampler.start_pixel({x, y}, int(k % replicates));
           rays[k - k0] = camera_ray(camera, sampler, {x, y}, int(k / replicates));
