@@ -3,6 +3,7 @@
 // directions are unit vectors in the local shading frame, z = shading normal, wo points away
 // from the surface towards the viewer, wi towards the light.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
@@ -38,6 +39,14 @@ BsdfEval<N> lobe_eval(const Lobe& lobe, const Vec3f& wo, const Vec3f& wi) {
     return lobe.eval(wo, wi);
   else
     return BsdfEval<N>{lobe.f(wo, wi), lobe.pdf(wo, wi)};
+}
+
+// A mixture's choice of lobe by u.x: the lobe of probability `width` owns u.x ∈ [lo, lo + width),
+// and gets u.x rescaled to [0, 1) for its own sample (as Cycles does), so that the points of a
+// stratified pattern that choose a lobe still cover its square evenly (a separate choice number
+// would send it a random subset of them).
+inline float within_lobe(float u, float lo, float width) {
+  return width > 0 ? std::clamp((u - lo) / width, 0.f, 0.99999994f) : 0.f;
 }
 
 // One delta direction of a BSDF and the share of light it carries (f·|cos θ_i| with the delta

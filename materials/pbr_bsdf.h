@@ -112,29 +112,24 @@ class PbrBsdf {
     }
     const float e_o = E_o(wo.z);
     const auto p = lobe_probabilities(e_o);
-    // The lobe is chosen by u.x, rescaled within the lobe's interval for the lobe's own sample (as
-    // Cycles does): the points that choose a lobe then still cover its square evenly, where a
-    // separate choice number uc picked a random subset of them (uc stays for the lobe's own choice).
-    const auto choose = [&](float lo, float width) {
-      u.x = width > 0 ? std::clamp((u.x - lo) / width, 0.f, 0.99999994f) : 0.f;
-    };
+    // The lobe is chosen by u.x (within_lobe); uc stays for the lobe's own choice.
     std::optional<BsdfSample<N>> s;
     BsdfEval<N> e;
     if (u.x < p[0]) {
-      choose(0, p[0]);
+      u.x = within_lobe(u.x, 0, p[0]);
       s = metal_.sample_f(wo, uc, u);
       if (!s) return std::nullopt;
       if (s->specular) return scaled(*s, metallic_, p[0]);
       e = mixture(wo, s->wi, p, e_o, Sampled{0, {s->f, s->pdf}});
     } else if (u.x < p[0] + p[1]) {
-      choose(p[0], p[1]);
+      u.x = within_lobe(u.x, p[0], p[1]);
       s = dielectric_.sample_f(wo, uc, u);
       if (!s) return std::nullopt;
       if (s->specular) return scaled(*s, 1 - metallic_, p[1]);
       e = mixture(wo, s->wi, p, e_o, Sampled{1, {s->f, s->pdf}});
     } else {  // the diffuse base: reflected (p[2]) or transmitted to the far side (p[3])
       const bool far_side = Extensions && u.x >= 1 - p[3];
-      choose(far_side ? 1 - p[3] : p[0] + p[1], far_side ? p[3] : p[2]);
+      u.x = within_lobe(u.x, far_side ? 1 - p[3] : p[0] + p[1], far_side ? p[3] : p[2]);
       Vec3f wi = sample_cosine_hemisphere(u);
       if ((wo.z < 0) != far_side) wi.z = -wi.z;
       s = BsdfSample<N>{{}, wi, 0.f, false, far_side};
@@ -391,8 +386,10 @@ class LayeredBsdf {
     const auto p = layer_probabilities(wo);
     std::optional<BsdfSample<N>> s;
     int layer = 0;
-    if (uc < p[0]) {
-      s = coat_.sample_f(to_coat(wo, wo), uc / p[0], u);
+    // The layer is chosen by u.x (within_lobe), as the base chooses its lobe; uc stays for theirs.
+    if (u.x < p[0]) {
+      u.x = within_lobe(u.x, 0, p[0]);
+      s = coat_.sample_f(to_coat(wo, wo), uc, u);
       if (!s) return std::nullopt;
       s->wi = from_coat(wo, s->wi);
       if (!same_hemisphere(wo, s->wi)) return std::nullopt;
@@ -407,11 +404,13 @@ class LayeredBsdf {
         const BsdfEval<N> c = coat_.eval(to_coat(wo, wo), to_coat(wo, s->wi));
         s->f = c.f, s->pdf = c.pdf;
       }
-    } else if (uc < p[0] + p[1]) {
+    } else if (u.x < p[0] + p[1]) {
+      u.x = within_lobe(u.x, p[0], p[1]);
       s = sheen_.sample_f(wo, 0, u);
       layer = 1;
     } else {
-      s = base_.sample_f(wo, std::min((uc - p[0] - p[1]) / p[2], 0.99999994f), u);
+      u.x = within_lobe(u.x, p[0] + p[1], p[2]);
+      s = base_.sample_f(wo, uc, u);
       if (!s) return std::nullopt;
       if (s->specular) {
         s->f *= base_scale(wo, s->wi);

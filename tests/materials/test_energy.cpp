@@ -361,32 +361,38 @@ TEST_CASE("every sampled BSDF lobe follows its pdf (chi-square)") {
   }
 }
 
-TEST_CASE("the glTF base chooses its lobe by u.x, not uc: a grid of u at any fixed uc gives its albedo") {
-  // Half metal, half plastic: three lobes. The choice rescales u.x within the lobe's interval, so
-  // the points of a stratified grid that choose each lobe still cover it evenly, whatever uc is
-  // (uc is left to the lobe's own choice, the dielectric's reflection or transmission). With uc
-  // choosing the lobe, a fixed uc would send the whole grid to one lobe. The reference samples
-  // directions uniformly, so it does not share sample_f with what it checks.
+TEST_CASE("the glTF base and its layers choose their lobe by u.x, not uc: a grid of u at any fixed uc gives the albedo") {
+  // Half metal, half plastic: three lobes; under a clear coat and a sheen, two layers more. The
+  // choice rescales u.x within the lobe's interval (within_lobe), so the points of a stratified
+  // grid that choose each lobe still cover it evenly, whatever uc is (uc is left to the lobe's own
+  // choice, the dielectric's reflection or transmission). With uc choosing the lobe, a fixed uc
+  // would send the whole grid to one lobe. The reference samples directions uniformly, so it
+  // does not share sample_f with what it checks.
   PbrMaterial m = PbrMaterial::plastic(Rgb{0.8f, 0.5f, 0.2f}, 0.4f);
   m.metallic = 0.5f;
-  const Case c{"half-metallic gold", [&] { return bsdf_of(m); }};
-  const Bsdf<N> b = c.make();
-  Rng rng(41, 0);
-  for (float cos_o : {0.9f, 0.4f}) {
-    const Vec3f wo(std::sqrt(1 - cos_o * cos_o), 0, cos_o);
-    const Estimate reference = albedo_uniform_sampling(c, b, wo, 1000000, rng);
-    for (float uc : {0.02f, 0.5f, 0.98f}) {
-      constexpr int k = 256;
-      SampledSpectrum<N> sum(0.f);
-      for (int i = 0; i < k; ++i)
-        for (int j = 0; j < k; ++j) {
-          const auto s = bsdf_sample_f(b, wo, uc, {(float(i) + 0.5f) / k, (float(j) + 0.5f) / k});
-          if (s && s->pdf > 0) sum += s->f * (abs_cos_theta(s->wi) / s->pdf);
+  PbrMaterial layered = m;
+  layered.clearcoat = clearcoat(0.6f, 0.3f);
+  layered.sheen = sheen({0.5f, 0.5f, 1}, 0.5f);
+  for (const Case& c : {Case{"half-metallic gold", [&] { return bsdf_of(m); }},
+                        Case{"half-metallic gold under a clear coat and a sheen", [&] { return bsdf_of(layered); }}}) {
+    const Bsdf<N> b = c.make();
+    Rng rng(41, 0);
+    for (float cos_o : {0.9f, 0.4f}) {
+      const Vec3f wo(std::sqrt(1 - cos_o * cos_o), 0, cos_o);
+      const Estimate reference = albedo_uniform_sampling(c, b, wo, 1000000, rng);
+      for (float uc : {0.02f, 0.5f, 0.98f}) {
+        constexpr int k = 256;
+        SampledSpectrum<N> sum(0.f);
+        for (int i = 0; i < k; ++i)
+          for (int j = 0; j < k; ++j) {
+            const auto s = bsdf_sample_f(b, wo, uc, {(float(i) + 0.5f) / k, (float(j) + 0.5f) / k});
+            if (s && s->pdf > 0) sum += s->f * (abs_cos_theta(s->wi) / s->pdf);
+          }
+        for (int i = 0; i < N; ++i) {
+          INFO(c.name << ", cos θo " << cos_o << ", uc " << uc << ", lane " << i << ": grid " << sum[i] / (k * k)
+                      << ", reference " << reference.mean[i] << " ± " << reference.standard_error[i]);
+          CHECK(sum[i] / (k * k) == Approx(reference.mean[i]).margin(4 * reference.standard_error[i] + 1e-3));
         }
-      for (int i = 0; i < N; ++i) {
-        INFO("cos θo " << cos_o << ", uc " << uc << ", lane " << i << ": grid " << sum[i] / (k * k) << ", reference "
-                       << reference.mean[i] << " ± " << reference.standard_error[i]);
-        CHECK(sum[i] / (k * k) == Approx(reference.mean[i]).margin(4 * reference.standard_error[i] + 1e-3));
       }
     }
   }
