@@ -199,7 +199,8 @@ inline bool disperses(const Material& m, const Dielectric* front) {
 // (at most 1): KHR_materials_specular's coloured F0, on η's side of 1. The index η ≥ 1 of
 // reflectance F0 = ((η − 1)/(η + 1))² is (1 + √F0)/(1 − √F0) (F0 = 1: η → ∞). Two loops over the
 // lanes, each run on all lanes at once (in one, GCC turns the clamp's constant ends into branches
-// and leaves the lanes one by one).
+// and leaves the lanes one by one). The clamp's max with 0 repeats the one inside it, but GCC keeps
+// the loop vector code only with it (without: make_bsdf +0.05 M instructions per spp on lobes_all).
 template <int N>
 SampledSpectrum<N> ior_with_scaled_f0(float eta, const SampledSpectrum<N>& c) {
   const float f0 = sqr((eta - 1) / (eta + 1));
