@@ -42,7 +42,7 @@ BsdfEval<N> lobe_eval(const Lobe& lobe, const Vec3f& wo, const Vec3f& wi) {
 }
 
 // A mixture's choice of lobe by u.x: the lobe of probability `width` owns u.x ∈ [lo, lo + width),
-// and gets u.x rescaled to [0, 1) for its own sample (as Cycles does), so that the points of a
+// and gets u.x rescaled to [0, 1) for its own sample (as Cycles 3 does), so that the points of a
 // stratified pattern that choose a lobe still cover its square evenly (a separate choice number
 // would send it a random subset of them).
 inline float within_lobe(float u, float lo, float width) {

@@ -149,8 +149,8 @@ inline int film_excess_cell(float n_film, float eta) {
   const float u = (n_film - 1) * (kFilmSteps / 2.f), v = (eta - 1) * (kFilmSteps / 2.f);
   return (u >= 0) & (v >= 0) & (u < kFilmSteps) & (v < kFilmSteps) ? int(u) * kFilmSteps + int(v) : -1;
 }
-// The same, tabulated over n_f, η ∈ [1, 3] at build time and read as the largest of a cell's
-// corners; outside the table, computed.
+// film_reflectance_excess_exact, tabulated over n_f, η ∈ [1, 3) at build time and read as the
+// largest of a cell's corners; outside the table, computed.
 inline float film_reflectance_excess(float n_film, float eta) {
   const int cell = film_excess_cell(n_film, eta);
   return cell < 0 ? film_reflectance_excess_exact(n_film, eta) : albedo_tables::film_excess[cell];

@@ -373,8 +373,12 @@ TEST_CASE("the glTF base and its layers choose their lobe by u.x, not uc: a grid
   PbrMaterial layered = m;
   layered.clearcoat = clearcoat(0.6f, 0.3f);
   layered.sheen = sheen({0.5f, 0.5f, 1}, 0.5f);
-  for (const Case& c : {Case{"half-metallic gold", [&] { return bsdf_of(m); }},
-                        Case{"half-metallic gold under a clear coat and a sheen", [&] { return bsdf_of(layered); }}}) {
+  SurfacePoint tilted;  // a coat normal map's tilt: the coat samples in a frame of its own
+  tilted.coat_normal = normalize(Vec3f(0.3f, -0.2f, 1));
+  for (const Case& c :
+       {Case{"half-metallic gold", [&] { return bsdf_of(m); }},
+        Case{"half-metallic gold under a clear coat and a sheen", [&] { return bsdf_of(layered); }},
+        Case{"the same under a tilted clear coat", [&] { return bsdf_of(layered, 1, tilted); }}}) {
     const Bsdf<N> b = c.make();
     Rng rng(41, 0);
     for (float cos_o : {0.9f, 0.4f}) {
