@@ -8,18 +8,9 @@ namespace prism {
 
 namespace {
 
-// Gulbrandsen's n, k with normal reflectance r and edge tint g ∈ [0, 1], which blends n between
-// (1 − r)/(1 + r) and (1 + √r)/(1 − √r).
-std::array<double, 2> gulbrandsen_nk(double r, double g) {
-  const double sr = std::sqrt(r);
-  const double n = g * (1 - r) / (1 + r) + (1 - g) * (1 + sr) / (1 - sr);
-  const double k2 = (r * (n + 1) * (n + 1) - (n - 1) * (n - 1)) / (1 - r);
-  return {n, std::sqrt(std::max(k2, 0.0))};
-}
-
 // Directional albedo difference ∫ (F_exact − F_Schlick) 2cos θ dcos θ (64-point midpoint rule).
 double albedo_difference(double r, double g) {
-  const auto [n, k] = gulbrandsen_nk(r, g);
+  const auto [n, k] = gulbrandsen_nk(float(r), float(g));
   double sum = 0;
   for (int i = 0; i < 64; ++i) {
     const double c = (i + 0.5) / 64;
@@ -28,11 +19,13 @@ double albedo_difference(double r, double g) {
   return sum;
 }
 
+}  // namespace
+
 // The edge tint whose exact conductor reflects as much light in total as Schlick's
-// F = r + (1 − r)(1 − cos θ)⁵, by bisection, tabulated in r.
-double schlick_matched_edge_tint(double r) {
-  static const std::array<double, 101> table = [] {
-    std::array<double, 101> t{};
+// F = r + (1 − r)(1 − cos θ)⁵, by bisection.
+const std::array<float, 101>& schlick_matched_edge_tints() {
+  static const std::array<float, 101> table = [] {
+    std::array<float, 101> t{};
     for (int i = 0; i <= 100; ++i) {
       const double ri = std::min(i / 100.0, 0.999);
       double lo = 0, hi = 1;
@@ -40,21 +33,11 @@ double schlick_matched_edge_tint(double r) {
         const double mid = (lo + hi) / 2;
         (albedo_difference(ri, mid) > 0 ? hi : lo) = mid;
       }
-      t[i] = (lo + hi) / 2;
+      t[i] = float((lo + hi) / 2);
     }
     return t;
   }();
-  const double x = std::clamp(r, 0.0, 1.0) * 100;
-  const int i = std::min(int(x), 99);
-  return table[i] + (x - i) * (table[i + 1] - table[i]);
-}
-
-}  // namespace
-
-std::array<float, 2> metal_nk_from_reflectance(float reflectance) {
-  const double r = std::clamp(double(reflectance), 0.0, 0.999);  // r < 1 keeps k finite
-  const auto nk = gulbrandsen_nk(r, schlick_matched_edge_tint(r));
-  return {float(nk[0]), float(nk[1])};
+  return table;
 }
 
 ConstantSpectra::ConstantSpectra(const PbrMaterial& m) {

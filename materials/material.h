@@ -213,11 +213,42 @@ SampledSpectrum<N> ior_with_scaled_f0(float eta, const SampledSpectrum<N>& c) {
   return scaled;
 }
 
-// The n, k of a metal whose normal-incidence reflectance is r: Gulbrandsen's parametrisation
-// (2014, "Artist Friendly Metallic Fresnel", JCGT 3(4)) with the edge tint that gives the same
-// directional albedo as glTF's reference metal (Schlick, F0 = r). Measured metals in the
+// Gulbrandsen's metal (2014, "Artist Friendly Metallic Fresnel", JCGT 3(4)) of normal-incidence
+// reflectance r < 1 and edge tint g ∈ [0, 1]: n blended between (1 − r)/(1 + r) and
+// (1 + √r)/(1 − √r) by g, and the k that gives F0 = r, k² = (r (n + 1)² − (n − 1)²) / (1 − r).
+inline std::array<float, 2> gulbrandsen_nk(float r, float g) {
+  const float sr = std::sqrt(r);
+  const float n = g * (1 - r) / (1 + r) + (1 - g) * (1 + sr) / (1 - sr);
+  return {n, std::sqrt(std::max((r * sqr(n + 1) - sqr(n - 1)) / (1 - r), 0.f))};
+}
+
+// The edge tints g(r) with which Gulbrandsen's metal of reflectance r reflects as much light in
+// total as glTF's reference metal (Schlick, F0 = r), at r = 0, 0.01, …, 1 (built on first use).
+const std::array<float, 101>& schlick_matched_edge_tints();
+
+// Each lane's n, k of a metal whose normal-incidence reflectance is r_λ: Gulbrandsen's, with the
+// edge tint that gives the directional albedo of glTF's reference metal. Measured metals in the
 // visible sit close to it (edge tints 0.9-1 for Cu, Al, Ag, Au); the Fresnel formula stays exact.
-std::array<float, 2> metal_nk_from_reflectance(float r);
+// Two loops over the lanes, each run on all lanes at once (vector code): in one, GCC turns the
+// clamp's constant ends into branches and leaves the lanes one by one.
+template <int N>
+struct MetalIndex {
+  SampledSpectrum<N> n, k;
+};
+template <int N>
+MetalIndex<N> metal_nk_from_reflectance(const SampledSpectrum<N>& reflectance) {
+  const std::array<float, 101>& tint = schlick_matched_edge_tints();
+  std::array<float, N> r;
+  for (int i = 0; i < N; ++i) r[i] = std::min(std::max(reflectance[i], 0.f), 0.999f);  // r < 1 keeps k finite
+  MetalIndex<N> m;
+  for (int i = 0; i < N; ++i) {
+    const float x = r[i] * 100;
+    const int j = int(x);  // ≤ 99
+    const auto nk = gulbrandsen_nk(r[i], tint[j] + (x - float(j)) * (tint[j + 1] - tint[j]));
+    m.n[i] = nk[0], m.k[i] = nk[1];
+  }
+  return m;
+}
 
 // The BSDF of material m for the path's wavelengths. `front` is the dielectric on the front
 // (normal) side of the surface, or nullptr for vacuum. Where the index ratio varies with λ, every
@@ -253,11 +284,8 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
     if (material.metal) {
       n = sample(material.metal->n, lambda), k = sample(material.metal->k, lambda);
     } else {
-      for (int i = 0; i < N; ++i) {  // found once for lanes of the same colour (all of a grey metal)
-        const auto nk =
-            i > 0 && color[i] == color[i - 1] ? std::array{n[i - 1], k[i - 1]} : metal_nk_from_reflectance(color[i]);
-        n[i] = nk[0], k[i] = nk[1];
-      }
+      const MetalIndex<N> m = metal_nk_from_reflectance(color);
+      n = m.n, k = m.k;
     }
     n /= n_front, k /= n_front;
   }

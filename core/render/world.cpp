@@ -88,7 +88,7 @@ World::World(const Scene& scene, const AccelOptions& accel)
   // The tables a render reads, loaded here rather than at the first hit inside the timed render.
   RgbToSpectrumTable::srgb();
   cie();
-  metal_nk_from_reflectance(0.5f);  // builds the edge-tint table of the base-colour metals (~40 M instructions)
+  schlick_matched_edge_tints();  // the base-colour metals' table (~40 M instructions)
   // Untextured colours, upsampled once.
   spectra_.resize(scene.materials.size());
   for (size_t i = 0; i < scene.materials.size(); ++i)

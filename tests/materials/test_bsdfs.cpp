@@ -106,8 +106,12 @@ TEST_CASE("smooth conductor reflects the exact Fresnel reflectance per wavelengt
 }
 
 TEST_CASE("a metal made from a colour reflects that colour at normal incidence") {
-  const auto [n, k] = metal_nk_from_reflectance(0.7f);
-  CHECK(fresnel_conductor(1, n, k) == Approx(0.7).margin(1e-4));
+  // Every lane its own reflectance, from black to nearly white (lanes are found all at once).
+  SampledSpectrum<8> r;
+  for (int i = 0; i < 8; ++i) r[i] = std::array{0.f, 0.01f, 0.2f, 0.455f, 0.7f, 0.9f, 0.99f, 0.999f}[i];
+  const MetalIndex<8> lanes = metal_nk_from_reflectance(r);
+  for (int i = 0; i < 8; ++i) CHECK(fresnel_conductor(1, lanes.n[i], lanes.k[i]) == Approx(r[i]).margin(1e-4));
+  const float n = lanes.n[4], k = lanes.k[4];
   // Its directional albedo matches glTF's reference (Schlick) metal of the same colour.
   double exact = 0, schlick = 0;
   for (int i = 0; i < 1000; ++i) {
