@@ -8,6 +8,7 @@
 
 #include <optional>
 
+#include "materials/bsdf_sample.h"
 #include "render/lights.h"
 
 namespace prism {
@@ -58,14 +59,11 @@ std::optional<EmissionSample<N>> sample_le(const Light& light, Vec2f u_pos, Vec2
     const auto [b, p, p_error] = a->sample_point(u_pos);
     Vec3f n = a->n;
     float side_pdf = 1.f;
-    if (a->two_sided) {
+    if (a->two_sided) {  // the side chosen by u_dir.x, as a BSDF chooses its lobe
       side_pdf = 0.5f;
-      if (u_dir.x < 0.5f) {
-        u_dir.x *= 2.f;
-      } else {
-        u_dir.x = std::min(2.f * u_dir.x - 1.f, 0x1.fffffep-1f);
-        n = -n;
-      }
+      const bool back = u_dir.x >= 0.5f;
+      u_dir.x = within_lobe(u_dir.x, back ? 0.5f : 0.f, 0.5f);
+      if (back) n = -n;
     }
     const Vec3f local = sample_cosine_hemisphere(u_dir);
     const Vec3f w = Frame::from_z(n).to_world(local);
