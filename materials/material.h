@@ -239,7 +239,8 @@ template <int N>
 MetalIndex<N> metal_nk_from_reflectance(const SampledSpectrum<N>& reflectance) {
   const std::array<float, 101>& tint = schlick_matched_edge_tints();
   std::array<float, N> r;
-  for (int i = 0; i < N; ++i) r[i] = std::min(std::max(reflectance[i], 0.f), 0.999f);  // r < 1 keeps k finite
+  // r < 1 keeps k finite; NaN becomes 0 (std::max(0, NaN) is 0), so the table is never read outside.
+  for (int i = 0; i < N; ++i) r[i] = std::max(0.f, std::min(reflectance[i], 0.999f));
   MetalIndex<N> m;
   for (int i = 0; i < N; ++i) {
     const float x = r[i] * 100;

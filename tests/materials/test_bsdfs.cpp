@@ -1,5 +1,7 @@
 // BSDF lobes: energy (R + T = 1 for clear dielectrics), reciprocity, sampling against pdf.
 
+#include <limits>
+
 #include <catch2/catch.hpp>
 
 #include "base/rng.h"
@@ -111,6 +113,12 @@ TEST_CASE("a metal made from a colour reflects that colour at normal incidence")
   for (int i = 0; i < 8; ++i) r[i] = std::array{0.f, 0.01f, 0.2f, 0.455f, 0.7f, 0.9f, 0.99f, 0.999f}[i];
   const MetalIndex<8> lanes = metal_nk_from_reflectance(r);
   for (int i = 0; i < 8; ++i) CHECK(fresnel_conductor(1, lanes.n[i], lanes.k[i]) == Approx(r[i]).margin(1e-4));
+  // Out of range, and NaN, as black or the brightest metal, never outside the edge-tint table.
+  for (int i = 0; i < 8; ++i) r[i] = std::array{-1.f, 2.f, std::numeric_limits<float>::quiet_NaN(), 0.5f, 0.f, 0.f, 0.f, 0.f}[i];
+  const MetalIndex<8> clamped = metal_nk_from_reflectance(r);
+  CHECK(fresnel_conductor(1, clamped.n[0], clamped.k[0]) == Approx(0).margin(1e-4));
+  CHECK(fresnel_conductor(1, clamped.n[1], clamped.k[1]) == Approx(0.999).margin(1e-4));
+  CHECK(fresnel_conductor(1, clamped.n[2], clamped.k[2]) == Approx(0).margin(1e-4));
   const float n = lanes.n[4], k = lanes.k[4];
   // Its directional albedo matches glTF's reference (Schlick) metal of the same colour.
   double exact = 0, schlick = 0;
