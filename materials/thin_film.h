@@ -229,16 +229,18 @@ struct FilmLanes {
     const float c = std::min(cos_theta, 1.f), s2 = 1 - c * c;
     constexpr bool metal = !std::is_floating_point_v<std::remove_cvref_t<std::invoke_result_t<BaseIndex, int>>>;
     std::array<float, N> n_re, n_im;
-    bool propagates = true;
     for (int i = 0; i < N; ++i) {
       const auto b = base(i);
       if constexpr (metal)
         n_re[i] = b.real(), n_im[i] = b.imag();
       else
         n_re[i] = b, n_im[i] = 0;
-      // A dielectric base must also let the light in (q_b real), as the real sum needs.
-      propagates &= (ior[i] * ior[i] > s2) & (metal || n_re[i] * n_re[i] > s2);
     }
+    // A dielectric base must also let the light in (q_b real), as the real sum needs. (An int
+    // reduction in a loop of its own, which GCC runs on all lanes at once; folded into the loop
+    // above, it left both scalar.)
+    int propagates = 1;
+    for (int i = 0; i < N; ++i) propagates &= (ior[i] * ior[i] > s2) & (metal || n_re[i] * n_re[i] > s2);
     if (!propagates) return std::nullopt;
     SampledSpectrum<N> R;
     for (int i = 0; i < N; ++i) {
