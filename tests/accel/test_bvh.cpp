@@ -272,7 +272,7 @@ TEST_CASE("a tree that is one leaf is entered only by rays through its box") {
   const std::array<Bounds3f, 3> prims = {Bounds3f{{0, 0, 0}, {1, 1, 1}}, Bounds3f{{1, 0, 0}, {2, 1, 1}},
                                          Bounds3f{{0, 1, 0}, {1, 2, 1}}};
   std::vector<uint32_t> slots;
-  const Bvh bvh = Bvh::build(prims, BvhBuildOptions{8}, slots);
+  const Bvh bvh = Bvh::build(prims, {.block_size = TriangleBlock::kLanes}, slots);
   const auto leaves_entered = [&](const Ray& ray) {
     int entered = 0;
     float tmax = ray.tmax;

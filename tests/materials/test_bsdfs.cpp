@@ -109,13 +109,13 @@ TEST_CASE("smooth conductor reflects the exact Fresnel reflectance per wavelengt
 
 TEST_CASE("a metal made from a colour reflects that colour at normal incidence") {
   // Every lane its own reflectance, from black to nearly white (lanes are found all at once).
-  SampledSpectrum<8> r;
-  for (int i = 0; i < 8; ++i) r[i] = std::array{0.f, 0.01f, 0.2f, 0.455f, 0.7f, 0.9f, 0.99f, 0.999f}[i];
+  const SampledSpectrum<8> r(std::array{0.f, 0.01f, 0.2f, 0.455f, 0.7f, 0.9f, 0.99f, 0.999f});
   const MetalIndex<8> lanes = metal_nk_from_reflectance(r);
   for (int i = 0; i < 8; ++i) CHECK(fresnel_conductor(1, lanes.n[i], lanes.k[i]) == Approx(r[i]).margin(1e-4));
   // Out of range, and NaN, as black or the brightest metal, never outside the edge-tint table.
-  for (int i = 0; i < 8; ++i) r[i] = std::array{-1.f, 2.f, std::numeric_limits<float>::quiet_NaN(), 0.5f, 0.f, 0.f, 0.f, 0.f}[i];
-  const MetalIndex<8> clamped = metal_nk_from_reflectance(r);
+  constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+  const MetalIndex<8> clamped =
+      metal_nk_from_reflectance(SampledSpectrum<8>(std::array{-1.f, 2.f, kNaN, 0.5f, 0.f, 0.f, 0.f, 0.f}));
   CHECK(fresnel_conductor(1, clamped.n[0], clamped.k[0]) == Approx(0).margin(1e-4));
   CHECK(fresnel_conductor(1, clamped.n[1], clamped.k[1]) == Approx(0.999).margin(1e-4));
   CHECK(fresnel_conductor(1, clamped.n[2], clamped.k[2]) == Approx(0).margin(1e-4));
