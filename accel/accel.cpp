@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "accel/bvh_traverse.h"
+#include "base/first_equal.h"
 
 namespace prism {
 
@@ -61,9 +62,18 @@ Accel::TriangleTree::TriangleTree(const std::vector<Triangle>& triangles, std::s
 
 Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> instances, const AccelOptions& options)
     : instances_(instances), brute_force_(options.brute_force) {
+  // Each mesh's first copy (positions and indices bit for bit): meshes that differ only in what
+  // shading reads, such as MetalRoughSpheres' 98 spheres of one material each, share one tree.
+  const std::vector<uint32_t> geometry = first_equal(
+      uint32_t(meshes.size()), [&](uint32_t m) { return hash_bytes(meshes[m].positions, meshes[m].indices); },
+      [&](uint32_t a, uint32_t b) {
+        return same_bytes(meshes[a].positions, meshes[b].positions) && same_bytes(meshes[a].indices, meshes[b].indices);
+      });
   std::vector<uint32_t> users(meshes.size(), 0);
-  for (const AccelInstance& inst : instances) ++users[inst.mesh];
-  const auto shared = [&](const AccelInstance& inst) { return users[inst.mesh] > 1 && !options.flatten_instances; };
+  for (const AccelInstance& inst : instances) ++users[geometry[inst.mesh]];
+  const auto shared = [&](const AccelInstance& inst) {
+    return users[geometry[inst.mesh]] > 1 && !options.flatten_instances;
+  };
   const auto triangles_of = [&](uint32_t mesh) { return uint32_t(meshes[mesh].indices.size() / 3); };
 
   // Every triangle of the unshared instances, in world space, numbered globally. Vertices are
@@ -94,6 +104,10 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
   tree_of_mesh_.assign(meshes.size(), -1);
   std::vector<Bounds3f> bounds(world_count + instances.size());  // the world tree's triangles, then solos
   for (uint32_t mesh = 0; mesh < meshes.size(); ++mesh) {
+    if (geometry[mesh] != mesh) {
+      tree_of_mesh_[mesh] = tree_of_mesh_[geometry[mesh]];
+      continue;
+    }
     if (users[mesh] < 2 || options.flatten_instances) continue;
     tree_of_mesh_[mesh] = int(mesh_trees_.size());
     std::vector<Triangle> triangles(triangles_of(mesh));

@@ -3,7 +3,8 @@
 // instances. Knows nothing of materials or spectra.
 //
 // Two levels where they pay: the instances of a mesh that no other instance uses are copied
-// into one world-space BVH (the fastest to trace); a mesh shared by several instances gets one
+// into one world-space BVH (the fastest to trace); a mesh shared by several instances (or by
+// copies of it, the same positions and indices bit for bit under another material) gets one
 // BVH in its own space, and each of its instances enters the world BVH as a leaf of its own,
 // which the ray crosses into the mesh's space through the instance's inverse transform (computed
 // once where that costs little beside the trees, else on entry, so that millions of instances stay

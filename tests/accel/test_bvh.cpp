@@ -395,6 +395,40 @@ TEST_CASE("shared meshes traced through their instances' transforms") {
   CHECK(prim_differs <= hits / 1000);
 }
 
+TEST_CASE("copies of a mesh (other materials, the same bits) share one tree") {
+  Rng rng(8, 0);
+  Soup sphere;
+  sphere.add(test::make_icosphere({0, 0, 0}, 1.f, 3, 0));
+  TestScene copies;
+  copies.meshes = {sphere, sphere, random_triangles(100, rng)};
+  copies.instances = {{0, Transform::translate({0, 0, 3})}, {1, Transform::rotate(0.3, 0.2, 0.1, 0.9)}, {2, Transform{}}};
+  TestScene one = copies;  // the second instance names the first mesh itself
+  one.instances[1].mesh = 0;
+  TestScene nearly = copies;  // one coordinate of the copy one float apart: a mesh of its own
+  nearly.meshes[1].positions[7].x = std::nextafter(nearly.meshes[1].positions[7].x, 2.f);
+  const Accel accel = copies.build();
+  const Accel reference = one.build();
+  CHECK(accel.memory_bytes() == reference.memory_bytes());
+  CHECK(nearly.build().memory_bytes() > accel.memory_bytes());
+  int hits = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Ray ray = random_ray(rng);
+    INFO(describe(ray));
+    AccelHit hit, ref;
+    const bool got = accel.intersect(ray, hit);
+    REQUIRE(got == reference.intersect(ray, ref));
+    REQUIRE(accel.occluded(ray) == got);
+    if (!got) continue;
+    ++hits;
+    REQUIRE(hit.t == ref.t);
+    REQUIRE(hit.instance == ref.instance);
+    REQUIRE(hit.prim == ref.prim);
+    REQUIRE(hit.b0 == ref.b0);
+    for (int k = 0; k < 3; ++k) REQUIRE(hit.v[k] == ref.v[k]);
+  }
+  CHECK(hits > 500);
+}
+
 TEST_CASE("a forest of instances of a small mesh, with empty instances among them") {
   Rng rng(7, 0);
   TestScene scene;
