@@ -3,11 +3,11 @@
 // instances. Knows nothing of materials or spectra.
 //
 // Two levels where they pay: the instances of a mesh that no other instance uses are copied
-// into one world-space BVH (the fastest to trace); a mesh shared by several instances (or by
-// copies of it, the same positions and indices bit for bit under another material) gets one
-// BVH in its own space, and each of its instances enters the world BVH as a leaf of its own,
-// which the ray crosses into the mesh's space through the instance's inverse transform (computed
-// once where that costs little beside the trees, else on entry, so that millions of instances stay
+// into one world-space BVH (the fastest to trace); a mesh shared by several instances (or large
+// copies of it: the same positions and indices bit for bit, under other materials) gets one BVH
+// in its own space, and each of its instances enters the world BVH as a leaf of its own, which
+// the ray crosses into the mesh's space through the instance's inverse transform (computed once
+// where that costs little beside the trees, else on entry, so that millions of instances stay
 // small; the instances' own array is read while tracing). Queries are
 // exact functions of the geometry: the closest hit is the one with the smallest t, and among
 // equally close ones the smallest global_prim, whatever the trees' shapes or visiting order.
@@ -66,6 +66,7 @@ class Accel {
 
  private:
   static constexpr uint32_t kWorld = 0xFFFFFFFF;  // "instance" of triangles in the world tree
+  static constexpr uint64_t kCopiesWorthATree = 1 << 16;  // triangles that copies of a mesh add when flattened
   // A BVH whose leaves are blocks of triangles; `id`s are global triangle numbers in the world
   // tree and triangle numbers within the mesh in a mesh's tree. The world tree's solo leaves
   // are its instances of shared meshes, numbered as the instances.

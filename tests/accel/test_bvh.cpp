@@ -395,10 +395,10 @@ TEST_CASE("shared meshes traced through their instances' transforms") {
   CHECK(prim_differs <= hits / 1000);
 }
 
-TEST_CASE("copies of a mesh (other materials, the same bits) share one tree") {
+TEST_CASE("large copies of a mesh (the same bits, other materials) share one tree, small ones stay flat") {
   Rng rng(8, 0);
-  Soup sphere;
-  sphere.add(test::make_icosphere({0, 0, 0}, 1.f, 3, 0));
+  Soup sphere;  // 81,920 triangles: a copy adds more than the accel's kCopiesWorthATree when flattened
+  sphere.add(test::make_icosphere({0, 0, 0}, 1.f, 6, 0));
   TestScene copies;
   copies.meshes = {sphere, sphere, random_triangles(100, rng)};
   copies.instances = {{0, Transform::translate({0, 0, 3})}, {1, Transform::rotate(0.3, 0.2, 0.1, 0.9)}, {2, Transform{}}};
@@ -410,6 +410,10 @@ TEST_CASE("copies of a mesh (other materials, the same bits) share one tree") {
   const Accel reference = one.build();
   CHECK(accel.memory_bytes() == reference.memory_bytes());
   CHECK(nearly.build().memory_bytes() > accel.memory_bytes());
+  TestScene small;  // two copies of 100 triangles: flattened, as if each were a mesh of its own
+  small.meshes = {copies.meshes[2], copies.meshes[2]};
+  small.instances = {{0, Transform{}}, {1, Transform::translate({1, 0, 0})}};
+  CHECK(small.build().memory_bytes() == small.build({.flatten_instances = true}).memory_bytes());
   int hits = 0;
   for (int i = 0; i < 20000; ++i) {
     const Ray ray = random_ray(rng);
