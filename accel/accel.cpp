@@ -63,26 +63,22 @@ Accel::TriangleTree::TriangleTree(const std::vector<Triangle>& triangles, std::s
 Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> instances, const AccelOptions& options)
     : instances_(instances), brute_force_(options.brute_force) {
   const auto triangles_of = [&](uint32_t mesh) { return uint32_t(meshes[mesh].indices.size() / 3); };
-  // Each mesh's tree: its own, or its first copy's (the same positions and indices bit for bit,
-  // under another material: a glTF mesh per material over the same accessors) where flattening
-  // the copies would add at least kCopiesWorthATree triangles: MetalRoughSpheres' 98 spheres of
-  // 10,600 triangles (a 54 MB world tree against 0.7 MB, and faster to trace). Smaller copies stay
-  // flat, which traces faster: GlassVaseFlowers' two 3,200-triangle vases took 7% longer as instances.
-  std::vector<uint32_t> geometry = first_equal(
+  // A mesh and its copies (the same positions and indices bit for bit, under other materials: a
+  // glTF mesh per material over the same accessors) are one geometry, counted at its first mesh.
+  // It gets a tree of its own where its instances would add options.instance_from triangles or
+  // more to the world tree (see AccelOptions); otherwise they are flattened.
+  const std::vector<uint32_t> geometry = first_equal(
       uint32_t(meshes.size()), [&](uint32_t m) { return hash_bytes(meshes[m].positions, meshes[m].indices); },
       [&](uint32_t a, uint32_t b) {
         return same_bytes(meshes[a].positions, meshes[b].positions) && same_bytes(meshes[a].indices, meshes[b].indices);
       });
-  std::vector<uint32_t> copies(meshes.size(), 0);
-  for (const AccelInstance& inst : instances) ++copies[geometry[inst.mesh]];
-  for (uint32_t m = 0; m < meshes.size(); ++m)
-    if (copies[geometry[m]] < 2 || uint64_t(triangles_of(m)) * (copies[geometry[m]] - 1) < kCopiesWorthATree)
-      geometry[m] = m;
   std::vector<uint32_t> users(meshes.size(), 0);
   for (const AccelInstance& inst : instances) ++users[geometry[inst.mesh]];
-  const auto shared = [&](const AccelInstance& inst) {
-    return users[geometry[inst.mesh]] > 1 && !options.flatten_instances;
+  const auto own_tree = [&](uint32_t g) {
+    return !options.flatten_instances && users[g] > 1 &&
+           uint64_t(triangles_of(g)) * (users[g] - 1) >= options.instance_from;
   };
+  const auto shared = [&](const AccelInstance& inst) { return own_tree(geometry[inst.mesh]); };
 
   // Every triangle of the unshared instances, in world space, numbered globally. Vertices are
   // transformed in double and rounded once (as World computes hit points from them).
@@ -112,11 +108,11 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
   tree_of_mesh_.assign(meshes.size(), -1);
   std::vector<Bounds3f> bounds(world_count + instances.size());  // the world tree's triangles, then solos
   for (uint32_t mesh = 0; mesh < meshes.size(); ++mesh) {
-    if (geometry[mesh] != mesh) {
+    if (!own_tree(geometry[mesh])) continue;
+    if (geometry[mesh] != mesh) {  // a copy: its first mesh's tree
       tree_of_mesh_[mesh] = tree_of_mesh_[geometry[mesh]];
       continue;
     }
-    if (users[mesh] < 2 || options.flatten_instances) continue;
     tree_of_mesh_[mesh] = int(mesh_trees_.size());
     std::vector<Triangle> triangles(triangles_of(mesh));
     std::vector<uint32_t> ids(triangles.size());

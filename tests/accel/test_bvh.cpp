@@ -355,8 +355,8 @@ TEST_CASE("shared meshes traced through their instances' transforms") {
       {0, Transform::translate({0, -12, 0}) * Transform::rotate(0, 0, 0.7071, 0.7071)},
       {1, Transform::translate({5, -3, 1})},
   };
-  const Accel accel = scene.build();
-  const Accel reference = scene.build({.brute_force = true});
+  const Accel accel = scene.build({.instance_from = 0});  // (by default meshes this small are flattened)
+  const Accel reference = scene.build({.instance_from = 0, .brute_force = true});
   const Accel flat = scene.build({.flatten_instances = true});
   const BruteForce brute_force(scene.world_triangles());
   CHECK(accel.memory_bytes() < flat.memory_bytes());  // the shared meshes are stored once
@@ -395,7 +395,7 @@ TEST_CASE("shared meshes traced through their instances' transforms") {
   CHECK(prim_differs <= hits / 1000);
 }
 
-TEST_CASE("large copies of a mesh (the same bits, other materials) share one tree, small ones stay flat") {
+TEST_CASE("a large mesh and its copies (the same bits, other materials) share one tree, small ones stay flat") {
   Rng rng(8, 0);
   Soup sphere;  // 81,920 triangles: a copy adds more than the accel's kCopiesWorthATree when flattened
   sphere.add(test::make_icosphere({0, 0, 0}, 1.f, 6, 0));
@@ -410,10 +410,11 @@ TEST_CASE("large copies of a mesh (the same bits, other materials) share one tre
   const Accel reference = one.build();
   CHECK(accel.memory_bytes() == reference.memory_bytes());
   CHECK(nearly.build().memory_bytes() > accel.memory_bytes());
-  TestScene small;  // two copies of 100 triangles: flattened, as if each were a mesh of its own
+  TestScene small;  // 100 triangles named by two instances, and a copy: flattened unless told otherwise
   small.meshes = {copies.meshes[2], copies.meshes[2]};
-  small.instances = {{0, Transform{}}, {1, Transform::translate({1, 0, 0})}};
+  small.instances = {{0, Transform{}}, {0, Transform::translate({1, 0, 0})}, {1, Transform::translate({2, 0, 0})}};
   CHECK(small.build().memory_bytes() == small.build({.flatten_instances = true}).memory_bytes());
+  CHECK(small.build({.instance_from = 0}).memory_bytes() < small.build().memory_bytes());
   int hits = 0;
   for (int i = 0; i < 20000; ++i) {
     const Ray ray = random_ray(rng);
@@ -445,11 +446,11 @@ TEST_CASE("a forest of instances of a small mesh, with empty instances among the
     if (i % 100 == 0) scene.instances.push_back({1, Transform{}});
     if (i == 200) scene.instances.push_back({2, Transform{}});
   }
-  const Accel accel = scene.build();
+  const Accel accel = scene.build({.instance_from = 0});
   // Too many instances for their inverses to be kept beside so small a tree: each is inverted
   // on entry, and the whole accel stays smaller than the inverses alone would be.
   CHECK(accel.memory_bytes() < scene.instances.size() * sizeof(Transform));
-  const Accel reference = scene.build({.brute_force = true});
+  const Accel reference = scene.build({.instance_from = 0, .brute_force = true});
   const BruteForce brute_force(scene.world_triangles());
   // Global triangle number -> (instance, triangle), counted here independently of the accel.
   std::vector<std::pair<uint32_t, uint32_t>> owner;
