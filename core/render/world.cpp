@@ -44,14 +44,14 @@ auto shading_arrays(const Mesh& m) { return std::tie(m.indices, m.normals, m.uv[
 // from another's arrays gives the very same results (−0 ≠ +0).
 std::vector<const Mesh*> attribute_meshes(const std::vector<Mesh>& meshes) {
   const std::vector<uint32_t> first = first_equal(
-      uint32_t(meshes.size()), [&](uint32_t m) {
+      uint32_t(meshes.size()),
+      [&](uint32_t m) {
         return std::apply([](const auto&... v) { return hash_bytes(v...); }, shading_arrays(meshes[m]));
       },
       [&](uint32_t a, uint32_t b) {
         return std::apply(
             [&](const auto&... x) {
-              return std::apply([&](const auto&... y) { return (same_bytes(x, y) && ...); },
-                                shading_arrays(meshes[b]));
+              return std::apply([&](const auto&... y) { return (same_bytes(x, y) && ...); }, shading_arrays(meshes[b]));
             },
             shading_arrays(meshes[a]));
       });

@@ -397,11 +397,12 @@ TEST_CASE("shared meshes traced through their instances' transforms") {
 
 TEST_CASE("a large mesh and its copies (the same bits, other materials) share one tree, small ones stay flat") {
   Rng rng(8, 0);
-  Soup sphere;  // 81,920 triangles: a copy adds more than the accel's kCopiesWorthATree when flattened
+  Soup sphere;  // 81,920 triangles: its copy adds more than AccelOptions::instance_from's default flattened
   sphere.add(test::make_icosphere({0, 0, 0}, 1.f, 6, 0));
   TestScene copies;
   copies.meshes = {sphere, sphere, random_triangles(100, rng)};
-  copies.instances = {{0, Transform::translate({0, 0, 3})}, {1, Transform::rotate(0.3, 0.2, 0.1, 0.9)}, {2, Transform{}}};
+  copies.instances = {
+      {0, Transform::translate({0, 0, 3})}, {1, Transform::rotate(0.3, 0.2, 0.1, 0.9)}, {2, Transform{}}};
   TestScene one = copies;  // the second instance names the first mesh itself
   one.instances[1].mesh = 0;
   TestScene nearly = copies;  // one coordinate of the copy one float apart: a mesh of its own
