@@ -48,19 +48,6 @@ Transform Transform::operator*(const Transform& b) const {
   return r;
 }
 
-Vec3d Transform::point(const Vec3d& p) const {
-  const double x = m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3];
-  const double y = m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3];
-  const double z = m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3];
-  const double w = m[3][0] * p.x + m[3][1] * p.y + m[3][2] * p.z + m[3][3];
-  return w == 1 ? Vec3d(x, y, z) : Vec3d(x, y, z) / w;
-}
-
-Vec3d Transform::vector(const Vec3d& v) const {
-  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
-          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
-}
-
 Transform transpose(const Transform& t) {
   Transform r;
   for (int i = 0; i < 4; ++i)
@@ -136,17 +123,6 @@ Transform AffineTransform::inverse() const {
     }
   for (int i = 0; i < 3; ++i) r.m[i][3] = -(r.m[i][0] * a(0, 3) + r.m[i][1] * a(1, 3) + r.m[i][2] * a(2, 3));
   return r;
-}
-
-Vec3d AffineTransform::point(const Vec3d& p) const {
-  return {m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
-          m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
-          m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]};
-}
-
-Vec3d AffineTransform::vector(const Vec3d& v) const {
-  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
-          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
 }
 
 }  // namespace prism

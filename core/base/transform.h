@@ -43,6 +43,28 @@ struct AffineTransform {
   bool operator==(const AffineTransform&) const = default;
 };
 
+// Inline: the accel applies them on every entry into an instance and to every vertex of a hit on one.
+inline Vec3d Transform::point(const Vec3d& p) const {
+  const double x = m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3];
+  const double y = m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3];
+  const double z = m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3];
+  const double w = m[3][0] * p.x + m[3][1] * p.y + m[3][2] * p.z + m[3][3];
+  return w == 1 ? Vec3d(x, y, z) : Vec3d(x, y, z) / w;
+}
+inline Vec3d Transform::vector(const Vec3d& v) const {
+  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+}
+inline Vec3d AffineTransform::point(const Vec3d& p) const {
+  return {m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
+          m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
+          m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]};
+}
+inline Vec3d AffineTransform::vector(const Vec3d& v) const {
+  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+}
+
 Transform inverse(const Transform& t);
 Transform transpose(const Transform& t);
 double determinant3x3(const Transform& t);  // of the linear part: < 0 means the transform mirrors
