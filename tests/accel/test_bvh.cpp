@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <catch2/catch.hpp>
+#include <optional>
 
 #include "accel/accel.h"
 #include "accel/bvh_traverse.h"
@@ -128,6 +129,25 @@ void require_exact(const Accel& accel, const BruteForce& brute_force, const Ray&
   REQUIRE(hit.b2 == ref.h.b2);
   // The vertices handed back are the hit triangle's, in world space, bit for bit.
   for (int k = 0; k < 3; ++k) REQUIRE(hit.v[k] == brute_force.triangle(ref.prim)[k]);
+}
+
+// Two accels over the same triangles answer a ray alike, bit for bit: hit or miss (closest and
+// any), and the hit's t, instance, triangle, barycentrics and world-space vertices. The hit, if any.
+std::optional<AccelHit> require_same(const Accel& accel, const Accel& reference, const Ray& ray) {
+  INFO(describe(ray));
+  AccelHit hit, ref;
+  const bool got = accel.intersect(ray, hit);
+  REQUIRE(got == reference.intersect(ray, ref));
+  REQUIRE(accel.occluded(ray) == got);
+  if (!got) return std::nullopt;
+  REQUIRE(hit.t == ref.t);
+  REQUIRE(hit.instance == ref.instance);
+  REQUIRE(hit.prim == ref.prim);
+  REQUIRE(hit.b0 == ref.b0);
+  REQUIRE(hit.b1 == ref.b1);
+  REQUIRE(hit.b2 == ref.b2);
+  for (int k = 0; k < 3; ++k) REQUIRE(hit.v[k] == ref.v[k]);
+  return hit;
 }
 
 Vec3f random_in(Rng& rng, float lo, float hi) {
@@ -366,29 +386,21 @@ TEST_CASE("shared meshes traced through their instances' transforms") {
     ray.o = ray.o * 2.f;
     INFO(describe(ray));
     // Exactly as testing every triangle in the same spaces ...
-    AccelHit hit, ref;
-    const bool got = accel.intersect(ray, hit);
-    REQUIRE(got == reference.intersect(ray, ref));
-    REQUIRE(accel.occluded(ray) == got);
-    if (got) {
-      REQUIRE(hit.t == ref.t);
-      REQUIRE(hit.instance == ref.instance);
-      REQUIRE(hit.prim == ref.prim);
-      REQUIRE(hit.b0 == ref.b0);
-      // A shared mesh's triangle comes back in world space, transformed exactly as flattening
-      // transforms it (so as World's lights and the shading point see it), mirrored ones too.
-      for (int k = 0; k < 3; ++k) REQUIRE(hit.v[k] == brute_force.triangle(accel.global_prim(hit))[k]);
-    }
+    const std::optional<AccelHit> hit = require_same(accel, reference, ray);
+    // A shared mesh's triangle comes back in world space, transformed exactly as flattening
+    // transforms it (so as World's lights and the shading point see it), mirrored ones too.
+    if (hit)
+      for (int k = 0; k < 3; ++k) REQUIRE(hit->v[k] == brute_force.triangle(accel.global_prim(*hit))[k]);
     // ... and, to rounding, as the same triangles flattened into world space.
     require_exact(flat, brute_force, ray);
     AccelHit f;
-    REQUIRE(flat.intersect(ray, f) == got);
-    if (got) {
+    REQUIRE(flat.intersect(ray, f) == hit.has_value());
+    if (hit) {
       ++hits;
       // Rounding follows the coordinates' magnitude, not only t's (as raybench's check says).
-      const float magnitude = std::max({hit.t, f.t, std::abs(ray.o.x), std::abs(ray.o.y), std::abs(ray.o.z)});
-      CHECK(std::abs(hit.t - f.t) <= 2e-5f * magnitude);
-      prim_differs += accel.global_prim(hit) != flat.global_prim(f);
+      const float magnitude = std::max({hit->t, f.t, std::abs(ray.o.x), std::abs(ray.o.y), std::abs(ray.o.z)});
+      CHECK(std::abs(hit->t - f.t) <= 2e-5f * magnitude);
+      prim_differs += accel.global_prim(*hit) != flat.global_prim(f);
     }
   }
   CHECK(hits > 500);
@@ -417,21 +429,7 @@ TEST_CASE("a large mesh and its copies (the same bits, other materials) share on
   CHECK(small.build().memory_bytes() == small.build({.flatten_instances = true}).memory_bytes());
   CHECK(small.build({.instance_from = 0}).memory_bytes() < small.build().memory_bytes());
   int hits = 0;
-  for (int i = 0; i < 20000; ++i) {
-    const Ray ray = random_ray(rng);
-    INFO(describe(ray));
-    AccelHit hit, ref;
-    const bool got = accel.intersect(ray, hit);
-    REQUIRE(got == reference.intersect(ray, ref));
-    REQUIRE(accel.occluded(ray) == got);
-    if (!got) continue;
-    ++hits;
-    REQUIRE(hit.t == ref.t);
-    REQUIRE(hit.instance == ref.instance);
-    REQUIRE(hit.prim == ref.prim);
-    REQUIRE(hit.b0 == ref.b0);
-    for (int k = 0; k < 3; ++k) REQUIRE(hit.v[k] == ref.v[k]);
-  }
+  for (int i = 0; i < 20000; ++i) hits += require_same(accel, reference, random_ray(rng)).has_value();
   CHECK(hits > 500);
 }
 
@@ -461,17 +459,12 @@ TEST_CASE("a forest of instances of a small mesh, with empty instances among the
   for (int i = 0; i < 20000; ++i) {
     const Ray ray = random_ray(rng);
     INFO(describe(ray));
-    AccelHit hit, ref;
-    const bool got = accel.intersect(ray, hit);
-    REQUIRE(got == reference.intersect(ray, ref));
-    REQUIRE(accel.occluded(ray) == got);
-    if (!got) continue;
+    const std::optional<AccelHit> hit = require_same(accel, reference, ray);
+    if (!hit) continue;
     ++hits;
-    REQUIRE(hit.t == ref.t);
-    const uint32_t global = accel.global_prim(hit);
-    REQUIRE(global == reference.global_prim(ref));
-    REQUIRE(owner[global] == std::pair(hit.instance, hit.prim));
-    for (int k = 0; k < 3; ++k) REQUIRE(hit.v[k] == brute_force.triangle(global)[k]);
+    const uint32_t global = accel.global_prim(*hit);
+    REQUIRE(owner[global] == std::pair(hit->instance, hit->prim));
+    for (int k = 0; k < 3; ++k) REQUIRE(hit->v[k] == brute_force.triangle(global)[k]);
   }
   CHECK(hits > 500);
 }
