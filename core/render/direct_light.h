@@ -37,13 +37,18 @@ std::optional<LightContribution<N>> light_contribution(const World& world, const
   const auto sample = sample_li(light, LightSampleContext{si.p, si.p_error, si.n, reflect_axis}, u, lambda, sky);
   if (!sample || sample->L.is_zero()) return std::nullopt;
   const Vec3f wi = frame.to_local(sample->wi);
-  if (wrong_side(si, sample->wi, wi.z * wo.z < 0)) return std::nullopt;
-  const BsdfEval<N> e = bsdf_eval(bsdf, wo, wi);
-  const SampledSpectrum<N> f = e.f * abs_cos_theta(wi);
-  if (f.is_zero()) return std::nullopt;
+  const bool transmission = wi.z * wo.z < 0;
+  if (wrong_side(si, sample->wi, transmission)) return std::nullopt;
+  if (transmission && !si.material->transmits()) return std::nullopt;  // it only reflects
+  // The shadow ray before the BSDF (as Mitsuba 3): a blocked sample then costs no evaluation, and
+  // 22–31% of light samples are blocked on the shared assets with occluders (36% on lobes_all,
+  // whose layered BSDFs cost more to evaluate than a shadow ray).
   ++counters.shadow;
   const float T = world.transmittance(sample->shadow_ray);
   if (T == 0) return std::nullopt;
+  const BsdfEval<N> e = bsdf_eval(bsdf, wo, wi);
+  const SampledSpectrum<N> f = e.f * abs_cos_theta(wi);
+  if (f.is_zero()) return std::nullopt;
   return LightContribution<N>{f * sample->L * T, sample->pdf, e.pdf};
 }
 
