@@ -23,6 +23,7 @@ import os
 import re
 import resource
 import shutil
+import statistics
 import subprocess
 import sys
 import time
@@ -84,6 +85,9 @@ def parse_args():
     ap.add_argument("--ref-spp", type=int, default=2048,
                     help="--equal-error: spp of each renderer's reference, rendered as two halves with other seeds "
                          "(default 2048)")
+    ap.add_argument("--repeat", type=int, default=1,
+                    help="--equal-error: render each rung this many times, Cycles and Prism alternated, and take "
+                         "each one's median seconds (the images repeat: the seed is fixed); on a noisy machine, 3")
     ap.add_argument("--reuse-references", action="store_true",
                     help="--equal-error: keep references already in --out for the same size, depth and spp")
     ap.add_argument("--references-only", action="store_true",
@@ -99,8 +103,8 @@ def parse_args():
         a.ladder = sorted({int(x) for x in a.ladder.split(",") if x.strip()})
     except ValueError:
         ap.error("--ladder takes comma-separated integers")
-    if a.equal_error and (not a.ladder or a.ladder[0] < 1 or a.ref_spp < 2):
-        ap.error("--ladder needs spp >= 1 and --ref-spp >= 2")
+    if a.equal_error and (not a.ladder or a.ladder[0] < 1 or a.ref_spp < 2 or a.repeat < 1):
+        ap.error("--ladder needs spp >= 1, --ref-spp >= 2 and --repeat >= 1")
     return a
 
 
@@ -440,8 +444,9 @@ def equal_error(a, harness, exrstats, assets_dir):
     half = a.ref_spp // 2
     print("Equal-error time, Prism vs Cycles (Blender 3.4): %d threads each, Prism --max-depth %d = Cycles "
           "--max-bounces %d, references of 2 x %d spp (seeds %d, %d), ladder %s spp (seed %d). Seconds: path "
-          "tracing only (Prism's prism.seconds, Cycles' cycles_pathtrace_s)."
-          % (a.threads, a.max_depth, a.max_depth - 1, half, *REF_SEEDS, ",".join(map(str, a.ladder)), a.seed))
+          "tracing only (Prism's prism.seconds, Cycles' cycles_pathtrace_s), each rung's the median of %d."
+          % (a.threads, a.max_depth, a.max_depth - 1, half, *REF_SEEDS, ",".join(map(str, a.ladder)), a.seed,
+             a.repeat))
     results, failed = [], []
     for name in a.assets:
         work = os.path.join(a.out, name)
@@ -478,12 +483,16 @@ def equal_error(a, harness, exrstats, assets_dir):
             print("  %6s  %10s %10s  %10s %10s" % ("spp", "Cycles s", "rel RMSE", "Prism s", "rel RMSE"))
             for spp in a.ladder:
                 stem = "%dspp" % spp
-                cyc, prism, auto = render_both(a, harness, s, work, stem, spp, a.seed, auto)
-                for r, rec in (("cycles", cyc), ("prism", prism)):
-                    img, header = image(os.path.join(work, "%s_%s.exr" % (r, stem)))
-                    seconds = (float(rec.get("cycles_pathtrace_s", float("nan"))) if r == "cycles"
-                               else float(header.get("prism.seconds", float("nan"))))
-                    rungs[r].append(dict(spp=spp, seconds=seconds, error=debiased_rel_rmse(img, *refs[r])))
+                seconds = {"cycles": [], "prism": []}
+                for _ in range(a.repeat):
+                    cyc, prism, auto = render_both(a, harness, s, work, stem, spp, a.seed, auto)
+                    seconds["cycles"].append(float(cyc.get("cycles_pathtrace_s", float("nan"))))
+                    seconds["prism"].append(float(image(os.path.join(work, "prism_%s.exr" % stem))[1].get(
+                        "prism.seconds", float("nan"))))
+                for r in ("cycles", "prism"):
+                    img, _ = image(os.path.join(work, "%s_%s.exr" % (r, stem)))
+                    rungs[r].append(dict(spp=spp, seconds=statistics.median(seconds[r]), all_seconds=seconds[r],
+                                         error=debiased_rel_rmse(img, *refs[r])))
                 c, p = rungs["cycles"][-1], rungs["prism"][-1]
                 print("  %6d  %10.3f %10.5f  %10.3f %10.5f" % (spp, c["seconds"], c["error"], p["seconds"], p["error"]),
                       flush=True)
@@ -529,9 +538,9 @@ def write_equal_error_summary(a, results, failed):
              "%.2f" % r.get("ref_noise", float("nan"))] for r in results]
     with open(os.path.join(a.out, "equal_error.md"), "w") as f:
         f.write("# Equal-error time, Prism vs Cycles\n\n%s, %d threads each, Prism `--max-depth %d`, references 2 x %d "
-                "spp with their noise subtracted, ladder %s spp.\n\n"
+                "spp with their noise subtracted, ladder %s spp, each rung's seconds the median of %d renders.\n\n"
                 % (time.strftime("%Y-%m-%d %H:%M"), a.threads, a.max_depth, a.ref_spp // 2,
-                   ",".join(map(str, a.ladder))))
+                   ",".join(map(str, a.ladder)), a.repeat))
         f.write("| " + " | ".join(EQUAL_ERROR_HEADER) + " |\n|" + "---|" * len(EQUAL_ERROR_HEADER) + "\n")
         for row in rows:
             f.write("| " + " | ".join(row) + " |\n")
