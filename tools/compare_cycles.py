@@ -499,7 +499,7 @@ def equal_error(a, harness, exrstats, assets_dir):
             top_c, top_p = rungs["cycles"][-1], rungs["prism"][-1]
             target = top_c["error"]
             t_prism, extrapolated = time_at_error(rungs["prism"], target)
-            r = dict(asset=name, size="%dx%d" % (s["width"], s["height"]), rungs=rungs, target=target,
+            r = dict(asset=name, size="%dx%d" % (s["width"], s["height"]), rungs=rungs, target=target, repeat=a.repeat,
                      top_spp=top_c["spp"], t_cycles=top_c["seconds"], t_prism=t_prism, extrapolated=extrapolated,
                      ratio=t_prism / top_c["seconds"] if top_c["seconds"] > 0 else float("nan"),
                      error_ratio=top_p["error"] / top_c["error"] if top_c["error"] > 0 else float("nan"),
@@ -532,15 +532,16 @@ EQUAL_ERROR_HEADER = ["asset", "size", "Cycles: spp, rel RMSE, s", "Prism s to t
 
 
 def write_equal_error_summary(a, results, failed):
-    rows = [[r["asset"], r["size"], "%d, %.4f, %.2f" % (r["top_spp"], r["target"], r["t_cycles"]),
+    rows = [[r["asset"], r["size"], "%d, %.4f, %.2f%s" % (r["top_spp"], r["target"], r["t_cycles"],
+                                                           " (median of %d)" % r["repeat"] if r.get("repeat", 1) > 1 else ""),
              "%.2f%s" % (r["t_prism"], " (extrap.)" if r["extrapolated"] else ""), "%.2f" % r["ratio"],
              "%.2f" % r["error_ratio"], "%.2f" % r["sample_time_ratio"],
              "%.2f" % r.get("ref_noise", float("nan"))] for r in results]
     with open(os.path.join(a.out, "equal_error.md"), "w") as f:
         f.write("# Equal-error time, Prism vs Cycles\n\n%s, %d threads each, Prism `--max-depth %d`, references 2 x %d "
-                "spp with their noise subtracted, ladder %s spp, each rung's seconds the median of %d renders.\n\n"
+                "spp with their noise subtracted, ladder %s spp.\n\n"
                 % (time.strftime("%Y-%m-%d %H:%M"), a.threads, a.max_depth, a.ref_spp // 2,
-                   ",".join(map(str, a.ladder)), a.repeat))
+                   ",".join(map(str, a.ladder))))
         f.write("| " + " | ".join(EQUAL_ERROR_HEADER) + " |\n|" + "---|" * len(EQUAL_ERROR_HEADER) + "\n")
         for row in rows:
             f.write("| " + " | ".join(row) + " |\n")
