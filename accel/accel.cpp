@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <optional>
 
 #include "accel/bvh_traverse.h"
 #include "base/first_equal.h"
@@ -39,6 +40,22 @@ Bounds3f transform_bounds(const AffineTransform& m, const Bounds3f& b) {
   }
   return out;
 }
+
+// A ray's watertight triangle set-up (three divisions), made when it first meets a leaf: most rays
+// of an instanced scene meet none in the world tree (MetalRoughSpheres: 146 leaves in 81,600
+// camera rays), and the camera rays of a small scene mostly miss it.
+class LazyWatertightRay {
+ public:
+  explicit LazyWatertightRay(const Ray& ray) : ray_(ray) {}
+  const WatertightRay& operator*() {
+    if (!set_up_) set_up_.emplace(ray_);
+    return *set_up_;
+  }
+
+ private:
+  const Ray& ray_;
+  std::optional<WatertightRay> set_up_;
+};
 
 }  // namespace
 
@@ -175,9 +192,9 @@ template <bool AnyHit>
 template <bool AnyHit>
 bool Accel::trace(const Ray& ray, Closest& closest) const {
   // The world tree's leaves, and its solo leaves: the instances of shared meshes.
-  const WatertightRay world_ray(ray);
+  LazyWatertightRay world_ray(ray);
   const auto leaf = [&](uint32_t first, uint32_t count) __attribute__((always_inline)) {
-    return test_blocks<AnyHit>(world_, first, count, kWorld, world_ray, closest);
+    return test_blocks<AnyHit>(world_, first, count, kWorld, *world_ray, closest);
   };
   const auto enter = [&](uint32_t instance) {
     const TriangleTree& tree = mesh_trees_[tree_of_mesh_[instances_[instance].mesh]];
@@ -185,9 +202,9 @@ bool Accel::trace(const Ray& ray, Closest& closest) const {
     if (to_object.m[3][3] == 0) return false;  // singular: a flat instance nothing hits
     // In the mesh's space the direction is not unit length, so t stays the world-space distance.
     const Ray object_ray{Vec3f(to_object.point(Vec3d(ray.o))), Vec3f(to_object.vector(Vec3d(ray.d))), ray.tmax};
-    const WatertightRay wr(object_ray);
+    LazyWatertightRay wr(object_ray);
     const auto mesh_leaf = [&](uint32_t first, uint32_t count) {
-      return test_blocks<AnyHit>(tree, first, count, instance, wr, closest);
+      return test_blocks<AnyHit>(tree, first, count, instance, *wr, closest);
     };
     if (brute_force_) return mesh_leaf(0, uint32_t(tree.blocks.size()));
     return tree.bvh.traverse<AnyHit>(object_ray, closest.t, tree.blocks.data(), mesh_leaf,
