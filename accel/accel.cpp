@@ -196,10 +196,9 @@ bool Accel::trace(const Ray& ray, Closest& closest) const {
   const auto leaf = [&](uint32_t first, uint32_t count) __attribute__((always_inline)) {
     return test_blocks<AnyHit>(world_, first, count, kWorld, *world_ray, closest);
   };
-  const auto enter = [&](uint32_t instance) {
-    const TriangleTree& tree = mesh_trees_[tree_of_mesh_[instances_[instance].mesh]];
-    const Transform to_object = to_object_.empty() ? instances_[instance].to_world.inverse() : to_object_[instance];
+  const auto enter_with = [&](uint32_t instance, const Transform& to_object) {
     if (to_object.m[3][3] == 0) return false;  // singular: a flat instance nothing hits
+    const TriangleTree& tree = mesh_trees_[tree_of_mesh_[instances_[instance].mesh]];
     // In the mesh's space the direction is not unit length, so t stays the world-space distance.
     const Ray object_ray{Vec3f(to_object.point(Vec3d(ray.o))), Vec3f(to_object.vector(Vec3d(ray.d))), ray.tmax};
     LazyWatertightRay wr(object_ray);
@@ -209,6 +208,12 @@ bool Accel::trace(const Ray& ray, Closest& closest) const {
     if (brute_force_) return mesh_leaf(0, uint32_t(tree.blocks.size()));
     return tree.bvh.traverse<AnyHit>(object_ray, closest.t, tree.blocks.data(), mesh_leaf,
                                      [](uint32_t) { return false; });  // mesh trees have no solo leaves
+  };
+  // The inverse kept, or made here; read in place (copying its 128 bytes was 0.35% of
+  // MetalRoughSpheres' instructions).
+  const auto enter = [&](uint32_t instance) {
+    if (!to_object_.empty()) return enter_with(instance, to_object_[instance]);
+    return enter_with(instance, instances_[instance].to_world.inverse());
   };
   if (brute_force_) {
     bool found = leaf(0, uint32_t(world_.blocks.size()));
