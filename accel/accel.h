@@ -10,10 +10,12 @@
 // where that costs little beside the trees, else on entry, so that millions of instances stay
 // small; the instances' own array is read while tracing). Queries are
 // exact functions of the geometry: the closest hit is the one with the smallest t, and among
-// equally close ones the smallest global_prim, whatever the trees' shapes or visiting order.
+// equally close ones the smallest global_prim, whatever the trees' shapes or visiting order. A
+// ray's skip_instance, which it cannot meet (hull_centroid), is not entered.
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -57,6 +59,13 @@ struct AccelHit {
 
 class Accel {
  public:
+  // Which triangles of a mesh lie on its vertices' convex hull (`on`, one per triangle; empty
+  // when none do), and the vertices' centroid.
+  struct Hull {
+    Vec3f centroid;
+    std::vector<uint8_t> on;
+  };
+
   Accel() = default;
   // `instances` must outlive the Accel: tracing reads the transforms of shared meshes' instances.
   Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> instances, const AccelOptions& options = {});
@@ -69,6 +78,15 @@ class Accel {
   size_t triangle_count() const { return triangle_count_; }
   size_t memory_bytes() const;
   Bounds3f bounds() const { return world_.bvh.bounds(); }
+  // For a triangle of an instance with a tree of its own that lies on its mesh's convex hull (the
+  // whole mesh on one side of the triangle's plane), the centroid of the mesh's vertices in world
+  // space, on that side; none otherwise. A ray leaving the triangle to the other side cannot meet
+  // the instance again (Ray::skip_instance).
+  std::optional<Vec3f> hull_centroid(uint32_t instance, uint32_t prim) const {
+    const int tree = tree_of_mesh_[instances_[instance].mesh];
+    if (tree < 0 || hulls_[tree].on.empty() || !hulls_[tree].on[prim]) return std::nullopt;
+    return instances_[instance].to_world.point_rounded(hulls_[tree].centroid);
+  }
 
  private:
   static constexpr uint32_t kWorld = 0xFFFFFFFF;  // "instance" of triangles in the world tree
@@ -93,6 +111,7 @@ class Accel {
 
   TriangleTree world_;
   std::vector<TriangleTree> mesh_trees_;
+  std::vector<Hull> hulls_;  // per mesh tree, in the mesh's space
   std::span<const Instance> instances_;
   // Per instance, the inverse of its transform if its mesh is shared (all zeros when singular);
   // empty without shared meshes, or when the inverses would cost more than an eighth of the trees

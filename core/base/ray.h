@@ -1,14 +1,21 @@
 #pragma once
 // Rays, and the robust spawning of secondary rays from surface points.
 
+#include <cstdint>
+
 #include "base/vec.h"
 
 namespace prism {
+
+inline constexpr uint32_t kNoInstance = 0xFFFFFFFF;
 
 struct Ray {
   Vec3f o;
   Vec3f d;
   float tmax = kInfinity;
+  // An instance the ray cannot meet, which the accel then does not enter: the one it leaves from a
+  // triangle on its convex hull, away from the hull (SurfaceInteraction::skip_towards).
+  uint32_t skip_instance = kNoInstance;
 };
 
 // Moves a surface point p, known to lie within ±error (per axis) of the true surface, off the

@@ -44,7 +44,9 @@ std::optional<LightContribution<N>> light_contribution(const World& world, const
   // 22–31% of light samples are blocked on the shared assets with occluders (36% on lobes_all,
   // whose layered BSDFs cost more to evaluate than a shadow ray).
   ++counters.shadow;
-  const float T = world.transmittance(sample->shadow_ray);
+  Ray shadow_ray = sample->shadow_ray;
+  shadow_ray.skip_instance = si.skip_towards(sample->wi);
+  const float T = world.transmittance(shadow_ray);
   if (T == 0) return std::nullopt;
   const BsdfEval<N> e = bsdf_eval(bsdf, wo, wi);
   const SampledSpectrum<N> f = e.f * abs_cos_theta(wi);

@@ -20,8 +20,21 @@ struct SurfaceInteraction {
   const Material* material;
   SurfacePoint at;  // texture coordinates and vertex colour, for the material
   uint32_t instance, prim;
+  // Where the triangle lies on its instance's convex hull (Accel::hull_centroid), the distance of
+  // the hull's centroid from the triangle's plane along n: the instance lies on that side. 0 elsewhere.
+  float hull_side = 0;
 
-  Ray spawn(const Vec3f& w) const { return spawn_ray(p, p_error, n, w); }
+  Ray spawn(const Vec3f& w) const {
+    Ray r = spawn_ray(p, p_error, n, w);
+    r.skip_instance = skip_towards(w);
+    return r;
+  }
+  // The instance, if w leaves the triangle away from the hull's side: such a ray cannot meet the
+  // instance again. A margin beyond the normal's rounding keeps rays along the plane.
+  uint32_t skip_towards(const Vec3f& w) const {
+    const float out = dot(w, n);
+    return (hull_side > 0 && out < -1e-4f) || (hull_side < 0 && out > 1e-4f) ? instance : kNoInstance;
+  }
   // The BSDFs' local frame: z = ns, x = the direction of anisotropy when there is one.
   Frame shading_frame() const {
     return tangent == Vec3f(0, 0, 0) ? Frame::from_z(ns) : Frame{tangent, cross(ns, tangent), ns};

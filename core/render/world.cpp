@@ -195,6 +195,7 @@ SurfaceInteraction World::surface_point(const Ray& ray, const AccelHit& hit) con
   si.material = &scene_.materials[m.material];
   si.instance = hit.instance;
   si.prim = hit.prim;
+  if (const auto c = accel_.hull_centroid(hit.instance, hit.prim)) si.hull_side = dot(*c - si.p, si.n);
   si.at = attribute_mesh_[instance.mesh]->attributes_at(hit.prim, b);
   if (const auto& spectra = spectra_[m.material]) si.at.spectra = &*spectra;
   return si;

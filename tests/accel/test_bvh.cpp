@@ -13,6 +13,7 @@
 #include "accel/accel.h"
 #include "accel/bvh_traverse.h"
 #include "accel/triangle.h"
+#include "base/frame.h"
 #include "base/rng.h"
 #include "base/warp.h"
 #include "support/test_scenes.h"
@@ -552,4 +553,69 @@ TEST_CASE("a ray leaving a surface point never re-hits that surface (conservativ
     AccelHit hit;
     REQUIRE_FALSE(accel.intersect({o, normalize(d), kInfinity}, hit));
   }
+}
+
+TEST_CASE("a ray leaving a triangle on its instance's convex hull to the open side cannot meet the instance again") {
+  Soup sphere, pair;
+  sphere.add(test::make_icosphere({0, 0, 0}, 1.f, 3, 0));
+  pair.add(test::make_icosphere({0, 0, 0}, 1.f, 1, 0));  // two spheres in one mesh: not one convex body
+  pair.add(test::make_icosphere({3, 0, 0}, 1.f, 1, 0));
+  TestScene scene;
+  scene.meshes = {sphere, pair};
+  scene.instances = {{0, Transform::translate({0, 0, 0})},
+                     {0, Transform::translate({2.5f, 0.3f, 0}) * Transform::scale({1, 2, 0.7})},
+                     {0, Transform::translate({-1, 2.4f, 0.5f}) * Transform::scale({1.2, -1, 1})},  // mirrored
+                     {1, Transform::translate({0, -3, 0})},
+                     {1, Transform::translate({0, -3, 3})}};
+  const Accel accel = scene.build({.instance_from = 0});
+  const Accel flat = scene.build({.flatten_instances = true});
+  // Every triangle of a convex mesh is on the hull, none of the pair's facing its twin; flattened
+  // instances have no hull (the world tree does not skip triangles).
+  for (uint32_t p = 0; p < sphere.indices.size() / 3; ++p) REQUIRE(accel.hull_centroid(1, p));
+  int pair_on = 0;
+  for (uint32_t p = 0; p < pair.indices.size() / 3; ++p) pair_on += accel.hull_centroid(3, p).has_value();
+  CHECK(pair_on > 0);
+  CHECK(pair_on < int(pair.indices.size() / 3));
+  CHECK_FALSE(flat.hull_centroid(1, 0));
+
+  // From points on the triangles, rays away from the hull's side: skipping the instance they leave
+  // changes no hit (they meet the other instances, or nothing). The opposite ray meets it.
+  Rng rng(31, 0);
+  const std::vector<Triangle> world = scene.world_triangles();
+  int skipped = 0, hits = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const uint32_t instance = uint32_t(rng.uniform() * scene.instances.size()) % scene.instances.size();
+    const Soup& mesh = scene.meshes[scene.instances[instance].mesh];
+    const uint32_t prim = uint32_t(rng.uniform() * (mesh.indices.size() / 3)) % (mesh.indices.size() / 3);
+    const auto centroid = accel.hull_centroid(instance, prim);
+    if (!centroid) continue;
+    const Triangle& t = world[accel.global_prim({0, 0, 0, 0, instance, prim, {}})];
+    const Vec3f b = sample_uniform_triangle({rng.uniform(), rng.uniform()});
+    const Vec3f p = t[0] * b.x + t[1] * b.y + t[2] * b.z;
+    const Vec3f n = normalize(cross(t[1] - t[0], t[2] - t[0]));
+    const Vec3f away = dot(*centroid - p, n) > 0 ? -n : n;
+    const Vec3f d = Frame::from_z(away).to_world(sample_uniform_hemisphere({rng.uniform(), rng.uniform()}));
+    if (dot(d, away) < 1e-4f) continue;
+    const Vec3f error = (abs(t[0] * b.x) + abs(t[1] * b.y) + abs(t[2] * b.z)) * gamma(7);
+    Ray ray = spawn_ray(p, error, n, d);
+    INFO(describe(ray));
+    AccelHit full, skipping;
+    const bool hit = accel.intersect(ray, full);
+    const bool occluded = accel.occluded(ray);
+    ray.skip_instance = instance;
+    REQUIRE(accel.intersect(ray, skipping) == hit);
+    REQUIRE(accel.occluded(ray) == occluded);
+    if (hit) {
+      REQUIRE(skipping.instance == full.instance);
+      REQUIRE(skipping.prim == full.prim);
+      REQUIRE(skipping.t == full.t);
+      REQUIRE(full.instance != instance);
+    }
+    ++skipped, hits += hit;
+    AccelHit back;
+    REQUIRE(accel.intersect(spawn_ray(p, error, n, -d), back));
+    REQUIRE(back.instance == instance);
+  }
+  CHECK(skipped > 5000);
+  CHECK(hits > 500);
 }
