@@ -300,6 +300,7 @@ size_t Accel::memory_bytes() const {
   size_t bytes = world_.memory_bytes() + first_prim_.size() * sizeof(uint32_t) + tree_of_mesh_.size() * sizeof(int) +
                  to_object_.size() * sizeof(Transform);
   for (const TriangleTree& t : mesh_trees_) bytes += t.memory_bytes();
+  for (const Hull& h : hulls_) bytes += sizeof(Hull) + h.on.size();
   return bytes;
 }
 
