@@ -3,7 +3,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <atomic>
 #include <optional>
 
 #include "accel/bvh_traverse.h"
@@ -60,7 +59,6 @@ Accel::Hull hull_of(const AccelMesh& mesh) {
   }
   const double tolerance = 1e-12 * length(Vec3d(box.hi - box.lo));
   Accel::Hull hull{Vec3f(sum / double(vertices)), std::vector<uint8_t>(triangles, 0)};
-  std::atomic<bool> any = false;
   tbb::parallel_for(size_t(0), triangles, [&](size_t t) {
     const Vec3d a(mesh.positions[mesh.indices[3 * t]]), b(mesh.positions[mesh.indices[3 * t + 1]]),
         c(mesh.positions[mesh.indices[3 * t + 2]]);
@@ -73,11 +71,9 @@ Accel::Hull hull_of(const AccelMesh& mesh) {
       const double side = (x[i] - a.x) * n.x + (y[i] - a.y) * n.y + (z[i] - a.z) * n.z;
       front |= side > tolerance, behind |= side < -tolerance;
     }
-    if (front && behind) return;
-    hull.on[t] = 1;
-    any.store(true, std::memory_order_relaxed);
+    hull.on[t] = !(front && behind);
   });
-  return any ? hull : Accel::Hull{};
+  return std::ranges::any_of(hull.on, [](uint8_t on) { return on != 0; }) ? hull : Accel::Hull{};
 }
 
 // A ray's watertight triangle set-up (three divisions), made when it first meets a leaf: most rays
