@@ -92,6 +92,19 @@ class LazyWatertightRay {
   std::optional<WatertightRay> set_up_;
 };
 
+// Bit l: lane l holds a triangle whose vertices are not all outside one of the region's planes.
+uint32_t triangles_meeting(const TriangleBlock& block, const BvhFrustum& region) {
+  const auto& v = block.v;
+  uint32_t mask = simd::bits(v[0][0] == v[0][0]);  // the lanes in use (the others are NaN)
+  for (int i = 0; i < region.count; ++i) {
+    const auto outside = [&](int k) {
+      return region.n[i][0] * v[k][0] + region.n[i][1] * v[k][1] + region.n[i][2] * v[k][2] > region.limit[i];
+    };
+    mask &= ~simd::bits(outside(0) & outside(1) & outside(2));
+  }
+  return mask;
+}
+
 }  // namespace
 
 Accel::TriangleTree::TriangleTree(const std::vector<Triangle>& triangles, std::span<const uint32_t> ids,
@@ -290,6 +303,29 @@ bool Accel::intersect(const Ray& ray, AccelHit& hit) const {
 bool Accel::occluded(const Ray& ray) const {
   Closest closest{ray.tmax};
   return trace<true>(ray, closest);
+}
+
+bool Accel::may_meet(const Frustum& region) const {
+  if (brute_force_) return true;
+  // A tree's leaves of triangles, the region given in the tree's space.
+  const auto triangles_meet = [](const TriangleTree& tree, const BvhFrustum& f) {
+    return [&tree, &f](uint32_t first, uint32_t count) {
+      for (uint32_t b = first; b < first + count; ++b)
+        if (triangles_meeting(tree.blocks[b], f)) return true;
+      return false;
+    };
+  };
+  // An instance of a shared mesh: its tree, with the region carried into the mesh's space.
+  const auto instance_meets = [&](uint32_t instance) {
+    const Instance& inst = instances_[instance];
+    const Transform to_object = to_object_.empty() ? inst.to_world.inverse() : to_object_[instance];
+    if (to_object.m[3][3] == 0) return false;  // singular: a flat instance nothing hits (as trace)
+    const TriangleTree& tree = mesh_trees_[tree_of_mesh_[inst.mesh]];
+    const BvhFrustum local(region.in_space_of(inst.to_world, to_object), tree.bvh.bounds());
+    return tree.bvh.any_leaf_meets(local, triangles_meet(tree, local), [](uint32_t) { return false; });
+  };
+  const BvhFrustum world(region, world_.bvh.bounds());
+  return world_.bvh.any_leaf_meets(world, triangles_meet(world_, world), instance_meets);
 }
 
 size_t Accel::memory_bytes() const {

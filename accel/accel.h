@@ -72,6 +72,10 @@ class Accel {
 
   bool intersect(const Ray& ray, AccelHit& hit) const;  // closest hit with 0 < t < ray.tmax
   bool occluded(const Ray& ray) const;                  // any hit with 0 < t < ray.tmax
+  // Whether a ray inside the region may hit anything: false only if every triangle (in the world
+  // tree, or in a shared mesh's tree seen through each instance) lies outside one of the region's
+  // planes, by more than its margin.
+  bool may_meet(const Frustum& region) const;
 
   // Triangles numbered instance by instance, each instance's triangles in mesh order.
   uint32_t global_prim(const AccelHit& hit) const { return first_prim_[hit.instance] + hit.prim; }

@@ -16,6 +16,7 @@
 
 #include "accel/simd.h"
 #include "base/bounds.h"
+#include "base/frustum.h"
 #include "base/huge_page_allocator.h"
 #include "base/ray.h"
 
@@ -89,6 +90,37 @@ struct BvhRay {
   }();
 };
 
+// Per-region constants of the box test (Bvh::any_leaf_meets), in float: each plane's normal in
+// every lane, the rows of a box's corner furthest inside it, and the bound on n·x beyond which a
+// point is outside, the region's margin for `extent` (everything tested) included.
+struct BvhFrustum {
+  int count;
+  simd::f8 n[5][3], limit[5];
+  size_t rows[5][3];
+
+  BvhFrustum(const Frustum& f, const Bounds3f& extent) : count(f.count) {
+    const double margin = f.margin(extent);
+    for (int i = 0; i < count; ++i) {
+      const Vec3d& normal = f.planes[i].n;
+      for (int a = 0; a < 3; ++a) {
+        n[i][a] = simd::broadcast(float(normal[a]));
+        rows[i][a] = size_t(normal[a] > 0 ? a : a + 3) * sizeof(BvhNode::planes[0]);
+      }
+      limit[i] = simd::broadcast(float(dot(normal, f.origin) + f.planes[i].d + margin));
+    }
+  }
+  // Bit c: child c's box is not wholly outside a plane. (Unused children's empty boxes give +∞ or NaN.)
+  uint32_t boxes(const BvhNode& node) const {
+    const char* planes = reinterpret_cast<const char*>(node.planes);
+    uint32_t mask = 0xFF;
+    for (int i = 0; i < count; ++i) {
+      const auto row = [&](int a) { return simd::load(reinterpret_cast<const float*>(planes + rows[i][a])); };
+      mask &= simd::bits(n[i][0] * row(0) + n[i][1] * row(1) + n[i][2] * row(2) <= limit[i]);
+    }
+    return mask;
+  }
+};
+
 class Bvh {
  public:
   static constexpr uint32_t kEmptySlot = 0xFFFFFFFF;
@@ -110,6 +142,10 @@ class Bvh {
   // which only the tracing code includes (so that changing it recompiles one file).
   template <bool AnyHit, typename Block, typename Leaf, typename Solo>
   bool traverse(const Ray& ray, float& tmax, const Block* blocks, Leaf&& leaf, Solo&& solo) const;
+  // Whether any leaf whose box may meet the region says its primitives may: leaf(first_block,
+  // block_count) or solo(index). Also in bvh_traverse.h.
+  template <typename Leaf, typename Solo>
+  bool any_leaf_meets(const BvhFrustum& region, Leaf&& leaf, Solo&& solo) const;
 
  private:
   friend class BvhBuilder;

@@ -1,6 +1,7 @@
 #pragma once
-// The BVH's traversal (declared in bvh.h): a stack of entered boxes, children visited nearest
-// first, boxes beyond the closest hit so far skipped.
+// The BVH's traversals (declared in bvh.h). A ray's: a stack of entered boxes, children visited
+// nearest first, boxes beyond the closest hit so far skipped. A region's: every box it may meet,
+// until a leaf whose primitives it may meet.
 
 #include "accel/bvh.h"
 
@@ -102,6 +103,25 @@ bool Bvh::traverse(const Ray& r, float& tmax, const Block* blocks, Leaf&& leaf, 
     } while (stack[top].t > tmax);
     ref = stack[top].ref;
   }
+}
+
+template <typename Leaf, typename Solo>
+bool Bvh::any_leaf_meets(const BvhFrustum& region, Leaf&& leaf, Solo&& solo) const {
+  if (root_ == kNoRoot) return false;
+  uint32_t stack[kStackSize + BvhNode::kWidth];
+  int top = 0;
+  stack[top++] = root_;
+  while (top > 0) {
+    const uint32_t ref = stack[--top];
+    if (bvh_ref::is_leaf(ref)) {
+      const uint32_t i = bvh_ref::index(ref);
+      if (bvh_ref::is_solo(ref) ? solo(i) : leaf(i, bvh_ref::block_count(ref))) return true;
+      continue;
+    }
+    const BvhNode& node = nodes_[ref];
+    for (uint32_t mask = region.boxes(node); mask; mask &= mask - 1) stack[top++] = node.child[std::countr_zero(mask)];
+  }
+  return false;
 }
 
 }  // namespace prism

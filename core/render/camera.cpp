@@ -39,6 +39,30 @@ Ray Camera::generate_ray(float x, float y) const {
   return {eye_, normalize(forward_ + right_ * (sx * half_w_) + up_ * (sy * half_h_)), kInfinity};
 }
 
+Frustum Camera::frustum(int x0, int y0, int x1, int y1) const {
+  // The film rectangle in units of the image plane (at distance 1, or the orthographic film's),
+  // widened beyond generate_ray's rounding: of the film position (a 2^-23 of the image's width
+  // or height), and of the direction or origin (a few 2^-24 of the plane's extent).
+  const double pw = 2.0 * half_w_ / width_, ph = 2.0 * half_h_ / height_;
+  const double mx = (0.01 + width_ * 0x1p-20) * pw + 1e-5 * (1 + half_w_ + half_h_);
+  const double my = (0.01 + height_ * 0x1p-20) * ph + 1e-5 * (1 + half_w_ + half_h_);
+  const double left = -half_w_ + x0 * pw - mx, right = -half_w_ + x1 * pw + mx;
+  const double top = half_h_ - y0 * ph + my, bottom = half_h_ - y1 * ph - my;
+  const Vec3d R(right_), U(up_), F(forward_);
+  Frustum f;
+  f.origin = Vec3d(eye_);
+  const auto add = [&](const Vec3d& n, double d) {
+    const double l = length(n);
+    f.planes[f.count++] = {n / l, d / l};
+  };
+  if (perspective()) {  // planes through the eye: a direction F + a R + c U has left ≤ a ≤ right, bottom ≤ c ≤ top
+    add(F * left - R, 0), add(R - F * right, 0), add(F * bottom - U, 0), add(U - F * top, 0);
+  } else {  // the origin on the film within the rectangle, the direction F
+    add(-R, -left), add(R, right), add(-U, -bottom), add(U, top), add(-F, 0);
+  }
+  return f;
+}
+
 std::optional<Camera::Connection> Camera::connect(const Vec3f& p) const {
   const Vec3f d = p - eye_;
   const float z = dot(d, forward_);

@@ -4,6 +4,7 @@
 
 #include <optional>
 
+#include "base/frustum.h"
 #include "base/ray.h"
 #include "scene/scene.h"
 
@@ -15,6 +16,8 @@ class Camera {
 
   // The ray through film position (x, y) in pixels, (0, 0) = top-left corner of the image.
   Ray generate_ray(float x, float y) const;
+  // A region holding every ray generate_ray gives for x in [x0, x1], y in [y0, y1] (with rounding).
+  Frustum frustum(int x0, int y0, int x1, int y1) const;
 
   // For light tracing (bidirectional methods): how a point p is seen by the camera (pbrt-v4 §5.2
   // We; Veach 1997 §10.2), if it is inside the frame.

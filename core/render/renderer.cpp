@@ -163,6 +163,24 @@ void first_hit(const World& world, const Ray& ray, const SampledWavelengths<N>& 
   out.hit = true;
 }
 
+// Pixels whose every camera ray leaves the scene at once: no box of the accel meets the rays
+// through the pixel (Camera::frustum). With a sky (sky_xyz), their samples take its value
+// untraced (render_tile); found tile by tile, then pixel by pixel in the tiles that meet a box.
+std::vector<uint8_t> sky_pixels(const World& world, const Camera& camera) {
+  std::vector<uint8_t> sky(size_t(camera.width()) * camera.height(), 0);
+  const int tiles_x = (camera.width() + kTileSize - 1) / kTileSize;
+  const int tiles_y = (camera.height() + kTileSize - 1) / kTileSize;
+  parallel_for(int64_t(tiles_x) * tiles_y, [&](int64_t tile) {
+    const int x0 = int(tile % tiles_x) * kTileSize, y0 = int(tile / tiles_x) * kTileSize;
+    const int x1 = std::min(x0 + kTileSize, camera.width()), y1 = std::min(y0 + kTileSize, camera.height());
+    const bool whole_tile = !world.accel().may_meet(camera.frustum(x0, y0, x1, y1));
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x)
+        sky[size_t(y) * camera.width() + x] = whole_tile || !world.accel().may_meet(camera.frustum(x, y, x + 1, y + 1));
+  });
+  return sky;
+}
+
 struct PassStats {
   RayCounters rays;
   uint64_t samples = 0, invalid = 0;
@@ -171,8 +189,8 @@ struct PassStats {
 // Takes every active pixel of the tile at (x0, y0) from the samples it has to `end`.
 template <int N>
 void render_tile(const World& world, const Camera& camera, const RenderOptions& options, RadianceFn<N> radiance,
-                 const std::optional<Xyz>& sky, Splatting<N> bdpt, int x0, int y0, int end,
-                 const std::vector<uint8_t>& active, Film& film, PassStats& stats) {
+                 const std::optional<Xyz>& sky, const std::vector<uint8_t>& sky_only, Splatting<N> bdpt, int x0, int y0,
+                 int end, const std::vector<uint8_t>& active, Film& film, PassStats& stats) {
   Sampler sampler(options.seed, options.sampler);
   const bool first_hits = options.aovs & (kAovAlbedo | kAovNormal | kAovDepth);
   const int bins = film.bins().count();
@@ -192,29 +210,34 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
       // The samples that saw the sky (camera_sample), per replicate: added together at the end.
       uint32_t sky_samples[2] = {0, 0};
       const int64_t last = int64_t(end) * replicates;
-      for (int64_t k0 = first; k0 < last; k0 += kRayBatch) {
-        const int64_t k1 = std::min(k0 + kRayBatch, last);
-        for (int64_t k = k0; k < k1; ++k) {
-          if (replicates > 1 || k == first) sampler.start_pixel({x, y}, int(k % replicates));
-          rays[k - k0] = camera_ray(camera, sampler, {x, y}, int(k / replicates));
-          samplers[k - k0] = sampler;
-        }
-        for (int64_t k = k0; k < k1; ++k) {
-          const int r = int(k % replicates);
-          const std::optional<CameraSample<N>> c =
-              camera_sample<N>(world, options, radiance, sky, bdpt, samplers[k - k0], rays[k - k0], stats.rays);
-          ++stats.samples;
-          if (!c) {
-            ++sky_samples[r];
-            continue;
+      if (!sky_only.empty() && sky_only[p]) {  // no camera ray of the pixel can meet the scene (sky_pixels)
+        for (int64_t k = first; k < last; ++k) ++sky_samples[k % replicates];
+        stats.samples += uint64_t(last - first);
+      } else {
+        for (int64_t k0 = first; k0 < last; k0 += kRayBatch) {
+          const int64_t k1 = std::min(k0 + kRayBatch, last);
+          for (int64_t k = k0; k < k1; ++k) {
+            if (replicates > 1 || k == first) sampler.start_pixel({x, y}, int(k % replicates));
+            rays[k - k0] = camera_ray(camera, sampler, {x, y}, int(k / replicates));
+            samplers[k - k0] = sampler;
           }
-          FilmSample fs{c->xyz};
-          if (first_hits) first_hit<N>(world, rays[k - k0], c->lambda, fs);
-          if (!film.add(p, fs, r)) ++stats.invalid;
-          if (bins)
-            for (int i = 0; i < N; ++i)
-              if (c->lambda.pdf()[i] > 0)
-                film.add_spectral(p, c->lambda[i], double(c->L[i]) / (c->lambda.pdf()[i] * N));
+          for (int64_t k = k0; k < k1; ++k) {
+            const int r = int(k % replicates);
+            const std::optional<CameraSample<N>> c =
+                camera_sample<N>(world, options, radiance, sky, bdpt, samplers[k - k0], rays[k - k0], stats.rays);
+            ++stats.samples;
+            if (!c) {
+              ++sky_samples[r];
+              continue;
+            }
+            FilmSample fs{c->xyz};
+            if (first_hits) first_hit<N>(world, rays[k - k0], c->lambda, fs);
+            if (!film.add(p, fs, r)) ++stats.invalid;
+            if (bins)
+              for (int i = 0; i < N; ++i)
+                if (c->lambda.pdf()[i] > 0)
+                  film.add_spectral(p, c->lambda[i], double(c->L[i]) / (c->lambda.pdf()[i] * N));
+          }
         }
       }
       for (int r = 0; r < 2; ++r)
@@ -228,6 +251,7 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
                          const RenderControl& control, std::optional<RenderState> resume) {
   const RadianceFn<N> radiance = radiance_estimator<N>(world, options);
   const std::optional<Xyz> sky = sky_xyz(world, options);
+  const std::vector<uint8_t> sky_only = sky ? sky_pixels(world, camera) : std::vector<uint8_t>{};
   const bool bidirectional =
       options.integrator != IntegratorKind::path && options.integrator != IntegratorKind::whitted;
   std::optional<BdptScene> bdpt_scene;
@@ -272,7 +296,7 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
       parallel_for(int64_t(tiles_x) * tiles_y, [&](int64_t tile) {
         PassStats ps;
         const Splatting<N> bdpt{bdpt_scene ? &*bdpt_scene : nullptr, splats ? &splats->local() : nullptr, vcm, lambda};
-        render_tile<N>(world, camera, options, radiance, sky, bdpt, int(tile % tiles_x) * kTileSize,
+        render_tile<N>(world, camera, options, radiance, sky, sky_only, bdpt, int(tile % tiles_x) * kTileSize,
                        int(tile / tiles_x) * kTileSize, to, active, state.film, ps);
         {
           std::lock_guard lock(stats_mutex);
