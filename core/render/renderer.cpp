@@ -163,9 +163,10 @@ void first_hit(const World& world, const Ray& ray, const SampledWavelengths<N>& 
   out.hit = true;
 }
 
-// Pixels whose every camera ray leaves the scene at once: no box of the accel meets the rays
-// through the pixel (Camera::frustum). With a sky (sky_xyz), their samples take its value
-// untraced (render_tile); found tile by tile, then pixel by pixel in the tiles that meet a box.
+// Pixels whose every camera ray leaves the scene at once: nothing in the accel can meet the rays
+// through the pixel (Camera::frustum, Accel::may_meet). With a sky (sky_xyz), their samples take
+// its value untraced (render_tile). Found tile by tile, then pixel by pixel in the tiles that may
+// meet something.
 std::vector<uint8_t> sky_pixels(const World& world, const Camera& camera) {
   std::vector<uint8_t> sky(size_t(camera.width()) * camera.height(), 0);
   const int tiles_x = (camera.width() + kTileSize - 1) / kTileSize;
