@@ -36,13 +36,11 @@ struct Frustum {
   Frustum in_space_of(const AffineTransform& to_world, const Transform& to_object) const {
     Frustum f = *this;
     f.origin = to_object.point(origin);
-    const auto& m = to_world.m;
+    const Transform normals = transpose(to_world.transform());
     for (int i = 0; i < count; ++i) {
-      const Vec3d& n = planes[i].n;
-      const Vec3d t{m[0][0] * n.x + m[1][0] * n.y + m[2][0] * n.z, m[0][1] * n.x + m[1][1] * n.y + m[2][1] * n.z,
-                    m[0][2] * n.x + m[1][2] * n.y + m[2][2] * n.z};
-      const double l = length(t);
-      f.planes[i] = {t / l, planes[i].d / l};
+      const Vec3d n = normals.vector(planes[i].n);
+      const double l = length(n);
+      f.planes[i] = {n / l, planes[i].d / l};
     }
     return f;
   }
