@@ -26,21 +26,27 @@ uint64_t Film::bytes_per_pixel(uint32_t aovs, const SpectralBins& bins) {
   return fixed * sizeof(Fixed) + 2 * sizeof(uint32_t);
 }
 
-bool Film::add_repeated(size_t p, const Xyz& xyz, uint32_t n, int replicate) {
+Film::FixedXyz Film::to_fixed_xyz(const Xyz& xyz) {
   const bool valid = fixed_in_range(xyz.x) && fixed_in_range(xyz.y) && fixed_in_range(xyz.z);
   const double v[3] = {valid ? xyz.x : 0.f, valid ? xyz.y : 0.f, valid ? xyz.z : 0.f};
+  FixedXyz f;
+  for (int c = 0; c < 3; ++c) f.value[c] = to_fixed(v[c]), f.square[c] = to_fixed(v[c] * v[c], kFixedSquareBits);
+  f.valid = valid;
+  return f;
+}
+
+bool Film::add_repeated(size_t p, const FixedXyz& xyz, uint32_t n, int replicate) {
   for (int c = 0; c < 3; ++c) {
-    const Fixed value = to_fixed(v[c]);
-    sum_[p * 3 + c] += n * value;
-    sq_[p * 3 + c] += n * to_fixed(v[c] * v[c], kFixedSquareBits);
-    if (replicate != 0) second_sum_[p * 3 + c] += n * value;
+    sum_[p * 3 + c] += n * xyz.value[c];
+    sq_[p * 3 + c] += n * xyz.square[c];
+    if (replicate != 0) second_sum_[p * 3 + c] += n * xyz.value[c];
   }
   (replicate == 0 ? count_ : second_count_)[p] += n;
-  return valid;
+  return xyz.valid;
 }
 
 bool Film::add(size_t p, const FilmSample& s, int replicate) {
-  const bool valid = add_repeated(p, s.xyz, 1, replicate);
+  const bool valid = add_repeated(p, to_fixed_xyz(s.xyz), 1, replicate);
   if (!aov_.empty() && valid) {
     Fixed* a = &aov_[p * kAovFields];
     const float values[6] = {s.albedo.x, s.albedo.y, s.albedo.z, s.normal.x, s.normal.y, s.normal.z};

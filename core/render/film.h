@@ -60,10 +60,16 @@ class Film {
   // Inf or out-of-range estimate counts as a sample of 0; returns false for it (the caller
   // counts it as invalid).
   bool add(size_t p, const FilmSample& s, int replicate = 0);
+  // One sample value rounded to the film's integers once, for adding it many times.
+  struct FixedXyz {
+    Fixed value[3], square[3];
+    bool valid;  // false for a NaN, Inf or out-of-range value, whose integers are those of 0
+  };
+  static FixedXyz to_fixed_xyz(const Xyz& xyz);
   // Adds n samples of one value that hit no surface (zero first-hit AOVs): to the bit what n calls
   // of add would, as their sums are n times the same integers. Returns false if the value is
   // invalid (then all n count as invalid samples of 0).
-  bool add_repeated(size_t p, const Xyz& xyz, uint32_t n, int replicate = 0);
+  bool add_repeated(size_t p, const FixedXyz& xyz, uint32_t n, int replicate = 0);
   // Adds every sum and count of `other` (a film of the same size, AOVs and bins) to this one.
   void merge(const Film& other);
   bool same_layout(const Film& other) const {

@@ -200,6 +200,7 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
   // batch writes the entries it reads).
   std::array<Ray, kRayBatch> rays;
   std::array<Sampler, kRayBatch> samplers;
+  const Film::FixedXyz sky_fixed = Film::to_fixed_xyz(sky.value_or(Xyz{0, 0, 0}));
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
       const size_t p = size_t(y) * camera.width() + x;
@@ -212,7 +213,8 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
       uint32_t sky_samples[2] = {0, 0};
       const int64_t last = int64_t(end) * replicates;
       if (!sky_only.empty() && sky_only[p]) {  // no camera ray of the pixel can meet the scene (sky_pixels)
-        for (int64_t k = first; k < last; ++k) ++sky_samples[k % replicates];
+        // Sample k belongs to replicate k % replicates, and first and last are multiples of replicates.
+        for (int r = 0; r < replicates; ++r) sky_samples[r] = uint32_t((last - first) / replicates);
         stats.samples += uint64_t(last - first);
       } else {
         for (int64_t k0 = first; k0 < last; k0 += kRayBatch) {
@@ -242,7 +244,7 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
         }
       }
       for (int r = 0; r < 2; ++r)
-        if (sky_samples[r] > 0 && !film.add_repeated(p, *sky, sky_samples[r], r)) stats.invalid += sky_samples[r];
+        if (sky_samples[r] > 0 && !film.add_repeated(p, sky_fixed, sky_samples[r], r)) stats.invalid += sky_samples[r];
     }
   stats.invalid += bdpt.invalid;
 }

@@ -80,7 +80,7 @@ TEST_CASE("a film given n equal samples at once holds what n single adds give, b
     const bool valid = std::isfinite(xyz.x) && xyz.x < 1e9f;
     for (int replicate = 0; replicate < 2; ++replicate) {
       for (int i = 0; i < 7; ++i) CHECK(one.add(4, FilmSample{xyz}, replicate) == valid);
-      CHECK(many.add_repeated(4, xyz, 7, replicate) == valid);
+      CHECK(many.add_repeated(4, Film::to_fixed_xyz(xyz), 7, replicate) == valid);
     }
     CHECK(film_bytes(one) == film_bytes(many));
     CHECK(many.samples(4) == 8);
