@@ -41,39 +41,47 @@ Bounds3f transform_bounds(const AffineTransform& m, const Bounds3f& b) {
   return out;
 }
 
-// Which triangles of a mesh lie on the boundary of its vertices' convex hull: every vertex on one
-// side of the triangle's plane or on it (within 10⁻¹² of the mesh's size, this test's own
-// rounding), so that a ray leaving the triangle to the other side cannot meet the mesh again; and
-// the vertices' centroid, on the mesh's side of each. Empty where none does, and unchecked where
-// triangles × vertices exceed 2^28 (a few tenths of a second).
-Accel::Hull hull_of(const AccelMesh& mesh) {
-  const size_t triangles = mesh.indices.size() / 3, vertices = mesh.positions.size();
-  if (triangles == 0 || double(triangles) * double(vertices) > 0x1p28) return {};
+// Which triangles lie on the boundary of the points' convex hull: every point on one side of the
+// triangle's plane or on it (within 10⁻¹² of the points' extent, this test's own rounding), so that
+// a ray leaving the triangle to the other side cannot meet any of them; and the points' centroid,
+// on their side of each. `vertex(t, k)` is vertex k of triangle t. Empty where none does, and
+// unchecked where triangles × points exceed kHullWork (a few tenths of a second for a convex body;
+// a triangle that is not on the hull mostly stops at the first block of points).
+constexpr double kHullWork = 0x1p28;
+template <typename Vertex>
+Accel::Hull hull_of(std::span<const Vec3f> points, size_t triangles, const Vertex& vertex) {
+  const size_t count = points.size();
+  if (triangles == 0 || double(triangles) * double(count) > kHullWork) return {};
   Bounds3f box;
   Vec3d sum(0, 0, 0);
-  std::vector<double> x(vertices), y(vertices), z(vertices);  // apart, so that the test below runs as vector code
-  for (size_t i = 0; i < vertices; ++i) {
-    const Vec3f& v = mesh.positions[i];
+  std::vector<double> x(count), y(count), z(count);  // apart, so that the test below runs as vector code
+  for (size_t i = 0; i < count; ++i) {
+    const Vec3f& v = points[i];
     box.extend(v), sum += Vec3d(v);
     x[i] = v.x, y[i] = v.y, z[i] = v.z;
   }
   const double tolerance = 1e-12 * length(Vec3d(box.hi - box.lo));
-  Accel::Hull hull{Vec3f(sum / double(vertices)), std::vector<uint8_t>(triangles, 0)};
+  Accel::Hull hull{Vec3f(sum / double(count)), std::vector<uint8_t>(triangles, 0)};
   tbb::parallel_for(size_t(0), triangles, [&](size_t t) {
-    const Vec3d a(mesh.positions[mesh.indices[3 * t]]), b(mesh.positions[mesh.indices[3 * t + 1]]),
-        c(mesh.positions[mesh.indices[3 * t + 2]]);
+    const Vec3d a(vertex(t, 0)), b(vertex(t, 1)), c(vertex(t, 2));
     const Vec3d normal = cross(b - a, c - a);
     const double area2 = length(normal);
     if (!(area2 > 0) || !std::isfinite(area2)) return;  // a degenerate triangle: never hit
     const Vec3d n = normal / area2;
     int front = 0, behind = 0;  // (ints, not a min and a max: GCC makes vector code of these alone)
-    for (size_t i = 0; i < vertices; ++i) {
-      const double side = (x[i] - a.x) * n.x + (y[i] - a.y) * n.y + (z[i] - a.z) * n.z;
-      front |= side > tolerance, behind |= side < -tolerance;
-    }
+    for (size_t first = 0; first < count && !(front && behind); first += 256)
+      for (size_t i = first; i < std::min(first + 256, count); ++i) {
+        const double side = (x[i] - a.x) * n.x + (y[i] - a.y) * n.y + (z[i] - a.z) * n.z;
+        front |= side > tolerance, behind |= side < -tolerance;
+      }
     hull.on[t] = !(front && behind);
   });
   return std::ranges::any_of(hull.on, [](uint8_t on) { return on != 0; }) ? hull : Accel::Hull{};
+}
+
+Accel::Hull hull_of(const AccelMesh& mesh) {
+  return hull_of(mesh.positions, mesh.indices.size() / 3,
+                 [&](size_t t, int k) { return mesh.positions[mesh.indices[3 * t + k]]; });
 }
 
 // A ray's watertight triangle set-up (three divisions), made when it first meets a leaf: most rays
@@ -193,6 +201,25 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
     const Bvh& tree = mesh_trees_[tree_of_mesh_[instances[i].mesh]].bvh;
     if (!tree.empty()) bounds[world_count + i] = transform_bounds(instances[i].to_world, tree.bounds());
   });
+  // The whole scene's convex hull, for the world tree's triangles: the points are their vertices and
+  // the corners of the shared meshes' instances' boxes. A ray leaving a triangle on it outwards meets nothing.
+  size_t hull_points = 0;
+  for (const AccelInstance& inst : instances) hull_points += shared(inst) ? 8 : meshes[inst.mesh].positions.size();
+  if (double(world_count) * double(hull_points) <= kHullWork) {
+    std::vector<Vec3f> points;
+    points.reserve(hull_points);
+    for (uint32_t i = 0; i < instances.size(); ++i) {
+      const Bounds3f& box = bounds[world_count + i];
+      if (!shared(instances[i]))
+        for (const Vec3f& v : meshes[instances[i].mesh].positions)
+          points.push_back(instances[i].to_world.point_rounded(v));
+      else if (!box.empty())
+        for (int c = 0; c < 8; ++c)
+          points.push_back({(c & 1 ? box.hi : box.lo).x, (c & 2 ? box.hi : box.lo).y, (c & 4 ? box.hi : box.lo).z});
+    }
+    world_hull_ = hull_of(points, world_count, [&](size_t t, int k) { return world_triangles[t][k]; });
+    if (!world_hull_.on.empty()) world_first_ = std::move(world_first);
+  }
   world_ = TriangleTree(world_triangles, world_ids, std::move(bounds));
 
   // The instances' inverse transforms, kept where they cost at most an eighth of the trees (a
@@ -240,6 +267,7 @@ template <bool AnyHit>
 
 template <bool AnyHit>
 bool Accel::trace(const Ray& ray, Closest& closest) const {
+  if (ray.skip_instance == kEveryInstance) return false;  // it leaves the whole scene's convex hull
   // The world tree's leaves, and its solo leaves: the instances of shared meshes.
   LazyWatertightRay world_ray(ray);
   const auto leaf = [&](uint32_t first, uint32_t count) __attribute__((always_inline)) {
@@ -333,6 +361,7 @@ size_t Accel::memory_bytes() const {
                  to_object_.size() * sizeof(Transform);
   for (const TriangleTree& t : mesh_trees_) bytes += t.memory_bytes();
   for (const Hull& h : hulls_) bytes += sizeof(Hull) + h.on.size();
+  bytes += world_hull_.on.size() + world_first_.size() * sizeof(uint32_t);
   return bytes;
 }
 

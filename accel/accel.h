@@ -11,7 +11,8 @@
 // small; the instances' own array is read while tracing). Queries are
 // exact functions of the geometry: the closest hit is the one with the smallest t, and among
 // equally close ones the smallest global_prim, whatever the trees' shapes or visiting order. A
-// ray's skip_instance, which it cannot meet (hull_centroid), is not entered.
+// ray's skip_instance, which it cannot meet (hull), is not entered; a ray that leaves the whole
+// scene's convex hull (kEveryInstance) is not traced.
 
 #include <array>
 #include <cstdint>
@@ -59,11 +60,18 @@ struct AccelHit {
 
 class Accel {
  public:
-  // Which triangles of a mesh lie on its vertices' convex hull (`on`, one per triangle; empty
-  // when none do), and the vertices' centroid.
+  // Which triangles lie on the convex hull of a set of points (`on`, one per triangle; empty when
+  // none do), and the points' centroid.
   struct Hull {
     Vec3f centroid;
     std::vector<uint8_t> on;
+  };
+  // A triangle on a convex hull, seen from where a ray leaves it: the hull's centroid in world space
+  // (on the hull's side of the triangle's plane), and what a ray leaving the triangle to the other
+  // side cannot meet (Ray::skip_instance).
+  struct HullSide {
+    Vec3f centroid;
+    uint32_t skip;
   };
 
   Accel() = default;
@@ -82,14 +90,18 @@ class Accel {
   size_t triangle_count() const { return triangle_count_; }
   size_t memory_bytes() const;
   Bounds3f bounds() const { return world_.bvh.bounds(); }
-  // For a triangle of an instance with a tree of its own that lies on its mesh's convex hull (the
-  // whole mesh on one side of the triangle's plane), the centroid of the mesh's vertices in world
-  // space, on that side; none otherwise. A ray leaving the triangle to the other side cannot meet
-  // the instance again (Ray::skip_instance).
-  std::optional<Vec3f> hull_centroid(uint32_t instance, uint32_t prim) const {
+  // Whether a triangle lies on a convex hull a ray leaving it outwards cannot meet again: that of
+  // its instance's mesh, for an instance with a tree of its own (the ray skips the instance), or
+  // that of the whole scene, for a triangle of the world tree (the ray meets nothing:
+  // kEveryInstance).
+  std::optional<HullSide> hull(uint32_t instance, uint32_t prim) const {
     const int tree = tree_of_mesh_[instances_[instance].mesh];
-    if (tree < 0 || hulls_[tree].on.empty() || !hulls_[tree].on[prim]) return std::nullopt;
-    return instances_[instance].to_world.point_rounded(hulls_[tree].centroid);
+    if (tree < 0) {
+      if (world_hull_.on.empty() || !world_hull_.on[world_first_[instance] + prim]) return std::nullopt;
+      return HullSide{world_hull_.centroid, kEveryInstance};
+    }
+    if (hulls_[tree].on.empty() || !hulls_[tree].on[prim]) return std::nullopt;
+    return HullSide{instances_[instance].to_world.point_rounded(hulls_[tree].centroid), instance};
   }
 
  private:
@@ -115,7 +127,9 @@ class Accel {
 
   TriangleTree world_;
   std::vector<TriangleTree> mesh_trees_;
-  std::vector<Hull> hulls_;  // per mesh tree, in the mesh's space
+  std::vector<Hull> hulls_;            // per mesh tree, in the mesh's space
+  Hull world_hull_;                    // the whole scene's, over the world tree's triangles (world space)
+  std::vector<uint32_t> world_first_;  // per instance, its first triangle in world_hull_ (kept with it)
   std::span<const Instance> instances_;
   // Per instance, the inverse of its transform if its mesh is shared (all zeros when singular);
   // empty without shared meshes, or when the inverses would cost more than an eighth of the trees

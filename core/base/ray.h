@@ -8,13 +8,15 @@
 namespace prism {
 
 inline constexpr uint32_t kNoInstance = 0xFFFFFFFF;
+inline constexpr uint32_t kEveryInstance = 0xFFFFFFFE;  // as Ray::skip_instance: the ray meets nothing
 
 struct Ray {
   Vec3f o;
   Vec3f d;
   float tmax = kInfinity;
   // An instance the ray cannot meet, which the accel then does not enter: the one it leaves from a
-  // triangle on its convex hull, away from the hull (SurfaceInteraction::skip_towards).
+  // triangle on its convex hull, away from the hull (SurfaceInteraction::skip_towards); or
+  // kEveryInstance, when that hull is the whole scene's.
   uint32_t skip_instance = kNoInstance;
 };
 

@@ -20,20 +20,22 @@ struct SurfaceInteraction {
   const Material* material;
   SurfacePoint at;  // texture coordinates and vertex colour, for the material
   uint32_t instance, prim;
-  // Where the triangle lies on its instance's convex hull (Accel::hull_centroid), the distance of
-  // the hull's centroid from the triangle's plane along n: the instance lies on that side. 0 elsewhere.
+  // Where the triangle lies on a convex hull (Accel::hull), the distance of the hull's centroid from
+  // the triangle's plane along n (the hull lies on that side; 0 elsewhere), and what a ray leaving
+  // to the other side cannot meet: the instance, or every instance.
   float hull_side = 0;
+  uint32_t hull_skip = kNoInstance;
 
   Ray spawn(const Vec3f& w) const {
     Ray r = spawn_ray(p, p_error, n, w);
     r.skip_instance = skip_towards(w);
     return r;
   }
-  // The instance, if w leaves the triangle away from the hull's side: such a ray cannot meet the
-  // instance again. A margin beyond the normal's rounding keeps rays along the plane.
+  // What w cannot meet if it leaves the triangle away from the hull's side (hull_skip). A margin
+  // beyond the normal's rounding keeps rays along the plane.
   uint32_t skip_towards(const Vec3f& w) const {
     const float out = dot(w, n);
-    return (hull_side > 0 && out < -1e-4f) || (hull_side < 0 && out > 1e-4f) ? instance : kNoInstance;
+    return (hull_side > 0 && out < -1e-4f) || (hull_side < 0 && out > 1e-4f) ? hull_skip : kNoInstance;
   }
   // The BSDFs' local frame: z = ns, x = the direction of anisotropy when there is one.
   Frame shading_frame() const {

@@ -196,8 +196,9 @@ SurfaceInteraction World::surface_point(const Ray& ray, const AccelHit& hit) con
   si.instance = hit.instance;
   si.prim = hit.prim;
   // The hull's side where the centroid is clearly off the plane (not where rounding could flip it: a thin plate).
-  if (const auto c = accel_.hull_centroid(hit.instance, hit.prim))
-    if (const float side = dot(*c - si.p, si.n); std::abs(side) > 1e-4f * length(*c - si.p)) si.hull_side = side;
+  if (const auto hull = accel_.hull(hit.instance, hit.prim))
+    if (const float side = dot(hull->centroid - si.p, si.n); std::abs(side) > 1e-4f * length(hull->centroid - si.p))
+      si.hull_side = side, si.hull_skip = hull->skip;
   si.at = attribute_mesh_[instance.mesh]->attributes_at(hit.prim, b);
   if (const auto& spectra = spectra_[m.material]) si.at.spectra = &*spectra;
   return si;

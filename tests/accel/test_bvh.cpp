@@ -269,8 +269,14 @@ TEST_CASE("leaves of 1 to 12 triangles (a block partly or wholly used, two block
       const TestScene scene = single(soup);
       const Accel accel = scene.build();
       constexpr int kLanes = TriangleBlock::kLanes;
-      if (clusters == 1 && n <= kLanes)  // one leaf under the root node: one block (and the two per-instance numbers)
-        CHECK(accel.memory_bytes() == sizeof(BvhNode) + sizeof(TriangleBlock) + 2 * sizeof(uint32_t));
+      if (clusters == 1 && n <= kLanes) {
+        // One leaf under the root node: one block and the two per-instance numbers; where triangles lie
+        // on the scene's convex hull, a byte per triangle and the instance's first one there.
+        bool hull = false;
+        for (uint32_t p = 0; p < uint32_t(n); ++p) hull |= accel.hull(0, p).has_value();
+        CHECK(accel.memory_bytes() ==
+              sizeof(BvhNode) + sizeof(TriangleBlock) + 2 * sizeof(uint32_t) + (hull ? n + sizeof(uint32_t) : 0));
+      }
       const BruteForce brute_force(scene.world_triangles());
       int hits = 0;
       for (int i = 0; i < 400; ++i) {
@@ -555,67 +561,92 @@ TEST_CASE("a ray leaving a surface point never re-hits that surface (conservativ
   }
 }
 
-TEST_CASE("a ray leaving a triangle on its instance's convex hull to the open side cannot meet the instance again") {
-  Soup sphere, pair;
+TEST_CASE("a ray leaving a triangle on a convex hull to the open side cannot meet what the hull holds") {
+  Soup sphere, pair, lone;
   sphere.add(test::make_icosphere({0, 0, 0}, 1.f, 3, 0));
   pair.add(test::make_icosphere({0, 0, 0}, 1.f, 1, 0));  // two spheres in one mesh: not one convex body
   pair.add(test::make_icosphere({3, 0, 0}, 1.f, 1, 0));
+  lone.add(test::make_icosphere({0, 0, 0}, 1.f, 2, 0));  // used once: in the world tree
   TestScene scene;
-  scene.meshes = {sphere, pair};
+  scene.meshes = {sphere, pair, lone};
   scene.instances = {{0, Transform::translate({0, 0, 0})},
                      {0, Transform::translate({2.5f, 0.3f, 0}) * Transform::scale({1, 2, 0.7})},
                      {0, Transform::translate({-1, 2.4f, 0.5f}) * Transform::scale({1.2, -1, 1})},  // mirrored
                      {1, Transform::translate({0, -3, 0})},
-                     {1, Transform::translate({0, -3, 3})}};
+                     {1, Transform::translate({0, -3, 3})},
+                     {2, Transform::translate({6, 0, 0}) * Transform::scale({1, 1.5f, 1})}};
   const Accel accel = scene.build({.instance_from = 0});
   const Accel flat = scene.build({.flatten_instances = true});
-  // Every triangle of a convex mesh is on the hull, none of the pair's facing its twin; flattened
-  // instances have no hull (the world tree does not skip triangles).
-  for (uint32_t p = 0; p < sphere.indices.size() / 3; ++p) REQUIRE(accel.hull_centroid(1, p));
-  int pair_on = 0;
-  for (uint32_t p = 0; p < pair.indices.size() / 3; ++p) pair_on += accel.hull_centroid(3, p).has_value();
-  CHECK(pair_on > 0);
-  CHECK(pair_on < int(pair.indices.size() / 3));
-  CHECK_FALSE(flat.hull_centroid(1, 0));
-
-  // From points on the triangles, rays away from the hull's side: skipping the instance they leave
-  // changes no hit (they meet the other instances, or nothing). The opposite ray meets it.
-  Rng rng(31, 0);
-  const std::vector<Triangle> world = scene.world_triangles();
-  int skipped = 0, hits = 0;
-  for (int i = 0; i < 20000; ++i) {
-    const uint32_t instance = uint32_t(rng.uniform() * scene.instances.size()) % scene.instances.size();
-    const Soup& mesh = scene.meshes[scene.instances[instance].mesh];
-    const uint32_t prim = uint32_t(rng.uniform() * (mesh.indices.size() / 3)) % (mesh.indices.size() / 3);
-    const auto centroid = accel.hull_centroid(instance, prim);
-    if (!centroid) continue;
-    const Triangle& t = world[accel.global_prim({0, 0, 0, 0, instance, prim, {}})];
-    const Vec3f b = sample_uniform_triangle({rng.uniform(), rng.uniform()});
-    const Vec3f p = t[0] * b.x + t[1] * b.y + t[2] * b.z;
-    const Vec3f n = normalize(cross(t[1] - t[0], t[2] - t[0]));
-    const Vec3f away = dot(*centroid - p, n) > 0 ? -n : n;
-    const Vec3f d = Frame::from_z(away).to_world(sample_uniform_hemisphere({rng.uniform(), rng.uniform()}));
-    if (dot(d, away) < 1e-4f) continue;
-    const Vec3f error = (abs(t[0] * b.x) + abs(t[1] * b.y) + abs(t[2] * b.z)) * gamma(7);
-    Ray ray = spawn_ray(p, error, n, d);
-    INFO(describe(ray));
-    AccelHit full, skipping;
-    const bool hit = accel.intersect(ray, full);
-    const bool occluded = accel.occluded(ray);
-    ray.skip_instance = instance;
-    REQUIRE(accel.intersect(ray, skipping) == hit);
-    REQUIRE(accel.occluded(ray) == occluded);
-    if (hit) {
-      REQUIRE(skipping.instance == full.instance);
-      REQUIRE(skipping.prim == full.prim);
-      REQUIRE(skipping.t == full.t);
-      REQUIRE(full.instance != instance);
-    }
-    ++skipped, hits += hit;
-    AccelHit back;
-    REQUIRE(accel.intersect(spawn_ray(p, error, n, -d), back));
-    REQUIRE(back.instance == instance);
+  const auto on = [&](const Accel& a, uint32_t instance) {
+    const size_t triangles = scene.meshes[scene.instances[instance].mesh].indices.size() / 3;
+    int count = 0;
+    for (uint32_t p = 0; p < triangles; ++p) count += a.hull(instance, p).has_value();
+    return std::pair{count, int(triangles)};
+  };
+  // Every triangle of a convex mesh is on its hull, none of the pair's facing its twin. In the world
+  // tree, a triangle is on the whole scene's hull: the lone sphere's, but not where it faces the
+  // others (their instances' boxes count as points of the scene); flattened, neither are the spheres'
+  // that face one another.
+  CHECK(on(accel, 1).first == on(accel, 1).second);
+  CHECK(accel.hull(1, 0)->skip == 1);
+  CHECK(on(accel, 3).first > 0);
+  CHECK(on(accel, 3).first < on(accel, 3).second);
+  CHECK(on(accel, 5).first > on(accel, 5).second / 5);
+  CHECK(on(accel, 5).first < on(accel, 5).second);
+  for (uint32_t instance = 0; instance < scene.instances.size(); ++instance) {
+    CHECK(on(flat, instance).first < on(flat, instance).second);
+    for (uint32_t p = 0; p < uint32_t(on(flat, instance).second); ++p)
+      if (const auto h = flat.hull(instance, p)) REQUIRE(h->skip == kEveryInstance);
   }
-  CHECK(skipped > 5000);
-  CHECK(hits > 500);
+  CHECK(on(flat, 5).first > 0);
+  const auto first_on = [&](const Accel& a, uint32_t instance) {
+    for (uint32_t p = 0;; ++p)
+      if (a.hull(instance, p)) return a.hull(instance, p)->skip;
+  };
+  CHECK(first_on(accel, 5) == kEveryInstance);
+
+  // From points on the triangles, rays away from the hull's side: skipping what the hull holds
+  // changes no hit (they meet the other instances, or nothing). The opposite ray meets the instance.
+  const std::vector<Triangle> world = scene.world_triangles();
+  for (const Accel* a : {&accel, &flat}) {
+    Rng rng(31, 0);
+    int skipped = 0, hits = 0, nothing = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const uint32_t instance = uint32_t(rng.uniform() * scene.instances.size()) % scene.instances.size();
+      const Soup& mesh = scene.meshes[scene.instances[instance].mesh];
+      const uint32_t prim = uint32_t(rng.uniform() * (mesh.indices.size() / 3)) % (mesh.indices.size() / 3);
+      const auto hull = a->hull(instance, prim);
+      if (!hull) continue;
+      const Triangle& t = world[a->global_prim({0, 0, 0, 0, instance, prim, {}})];
+      const Vec3f b = sample_uniform_triangle({rng.uniform(), rng.uniform()});
+      const Vec3f p = t[0] * b.x + t[1] * b.y + t[2] * b.z;
+      const Vec3f n = normalize(cross(t[1] - t[0], t[2] - t[0]));
+      const Vec3f away = dot(hull->centroid - p, n) > 0 ? -n : n;
+      const Vec3f d = Frame::from_z(away).to_world(sample_uniform_hemisphere({rng.uniform(), rng.uniform()}));
+      if (dot(d, away) < 1e-4f) continue;
+      const Vec3f error = (abs(t[0] * b.x) + abs(t[1] * b.y) + abs(t[2] * b.z)) * gamma(7);
+      Ray ray = spawn_ray(p, error, n, d);
+      INFO(describe(ray));
+      AccelHit full, skipping;
+      const bool hit = a->intersect(ray, full);
+      const bool occluded = a->occluded(ray);
+      if (hull->skip == kEveryInstance) REQUIRE_FALSE(hit);
+      ray.skip_instance = hull->skip;
+      REQUIRE(a->intersect(ray, skipping) == hit);
+      REQUIRE(a->occluded(ray) == occluded);
+      if (hit) {
+        REQUIRE(skipping.instance == full.instance);
+        REQUIRE(skipping.prim == full.prim);
+        REQUIRE(skipping.t == full.t);
+        REQUIRE(full.instance != instance);
+      }
+      ++skipped, hits += hit, nothing += hull->skip == kEveryInstance;
+      AccelHit back;
+      REQUIRE(a->intersect(spawn_ray(p, error, n, -d), back));
+      REQUIRE(back.instance == instance);
+    }
+    CHECK(skipped > 2000);
+    CHECK(nothing > 500);
+    if (a == &accel) CHECK(hits > 500);
+  }
 }
