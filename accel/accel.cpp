@@ -46,7 +46,7 @@ Bounds3f transform_bounds(const AffineTransform& m, const Bounds3f& b) {
 // a ray leaving the triangle to the other side cannot meet any of them; and the points' centroid,
 // on their side of each. `vertex(t, k)` is vertex k of triangle t. Empty where none does, and
 // unchecked where triangles × points exceed kHullWork (a few tenths of a second for a convex body;
-// a triangle that is not on the hull mostly stops at the first block of points).
+// a triangle that is not on the hull mostly stops at the first block of points, the extreme ones).
 constexpr double kHullWork = 0x1p28;
 template <typename Vertex>
 Accel::Hull hull_of(std::span<const Vec3f> points, size_t triangles, const Vertex& vertex) {
@@ -60,8 +60,22 @@ Accel::Hull hull_of(std::span<const Vec3f> points, size_t triangles, const Verte
     box.extend(v), sum += Vec3d(v);
     x[i] = v.x, y[i] = v.y, z[i] = v.z;
   }
+  // The extreme points along the 26 directions of a cube's faces, edges and corners first: most
+  // triangles that are not on the hull have one of them in front.
+  size_t front_count = 0;
+  for (int d = 0; d < 27; ++d) {
+    if (d == 13) continue;  // (0, 0, 0)
+    const Vec3d dir(d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1);
+    size_t best = front_count;
+    for (size_t i = front_count; i < count; ++i)
+      if (x[i] * dir.x + y[i] * dir.y + z[i] * dir.z > x[best] * dir.x + y[best] * dir.y + z[best] * dir.z) best = i;
+    if (best < count)
+      std::swap(x[front_count], x[best]), std::swap(y[front_count], y[best]), std::swap(z[front_count], z[best]),
+          ++front_count;
+  }
   const double tolerance = 1e-12 * length(Vec3d(box.hi - box.lo));
   Accel::Hull hull{Vec3f(sum / double(count)), std::vector<uint8_t>(triangles, 0)};
+  const double *px = x.data(), *py = y.data(), *pz = z.data();
   tbb::parallel_for(size_t(0), triangles, [&](size_t t) {
     const Vec3d a(vertex(t, 0)), b(vertex(t, 1)), c(vertex(t, 2));
     const Vec3d normal = cross(b - a, c - a);
@@ -69,9 +83,10 @@ Accel::Hull hull_of(std::span<const Vec3f> points, size_t triangles, const Verte
     if (!(area2 > 0) || !std::isfinite(area2)) return;  // a degenerate triangle: never hit
     const Vec3d n = normal / area2;
     int front = 0, behind = 0;  // (ints, not a min and a max: GCC makes vector code of these alone)
-    for (size_t first = 0; first < count && !(front && behind); first += 256)
-      for (size_t i = first; i < std::min(first + 256, count); ++i) {
-        const double side = (x[i] - a.x) * n.x + (y[i] - a.y) * n.y + (z[i] - a.z) * n.z;
+    for (size_t first = 0, end = std::min<size_t>(32, count); first < count && !(front && behind);
+         first = end, end = std::min(end + 1024, count))
+      for (size_t i = first; i < end; ++i) {
+        const double side = (px[i] - a.x) * n.x + (py[i] - a.y) * n.y + (pz[i] - a.z) * n.z;
         front |= side > tolerance, behind |= side < -tolerance;
       }
     hull.on[t] = !(front && behind);
