@@ -74,6 +74,7 @@ Accel::Hull hull_of(std::span<const Vec3f> points, size_t triangles, const Verte
           ++front_count;
   }
   const double tolerance = 1e-12 * length(Vec3d(box.hi - box.lo));
+  if (!std::isfinite(tolerance)) return {};  // points rounded to infinity (a huge transform): no side is sure
   Accel::Hull hull{Vec3f(sum / double(count)), std::vector<uint8_t>(triangles, 0)};
   const double *px = x.data(), *py = y.data(), *pz = z.data();
   tbb::parallel_for(size_t(0), triangles, [&](size_t t) {

@@ -561,6 +561,18 @@ TEST_CASE("a ray leaving a surface point never re-hits that surface (conservativ
   }
 }
 
+TEST_CASE("no triangle lies on a hull whose points were rounded to infinity") {
+  Soup sphere, far;
+  sphere.add(test::make_icosphere({0, 0, 0}, 1.f, 1, 0));
+  far.add(test::make_icosphere({0, 0, 0}, 1.f, 1, 0));
+  far.positions[0].x += 0.5f;  // not a copy of the sphere: flattened too
+  TestScene scene;
+  scene.meshes = {sphere, far};
+  scene.instances = {{0, Transform{}}, {1, Transform::scale({1e39, 1e39, 1e39})}};
+  const Accel accel = scene.build();
+  for (uint32_t p = 0; p < sphere.indices.size() / 3; ++p) REQUIRE_FALSE(accel.hull(0, p));
+}
+
 TEST_CASE("a ray leaving a triangle on a convex hull to the open side cannot meet what the hull holds") {
   Soup sphere, pair, lone;
   sphere.add(test::make_icosphere({0, 0, 0}, 1.f, 3, 0));
