@@ -26,8 +26,7 @@ bool hittable(const Triangle& v) {
 Bounds3f transform_bounds(const AffineTransform& m, const Bounds3f& b) {
   Vec3d lo(kInfinity, kInfinity, kInfinity), hi(-kInfinity, -kInfinity, -kInfinity);
   for (int corner = 0; corner < 8; ++corner) {
-    const Vec3d p =
-        m.point(Vec3d((corner & 1 ? b.hi : b.lo).x, (corner & 2 ? b.hi : b.lo).y, (corner & 4 ? b.hi : b.lo).z));
+    const Vec3d p = m.point(Vec3d(b.corner(corner)));
     lo = min(lo, p), hi = max(hi, p);
   }
   const double magnitude =
@@ -230,8 +229,7 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
         for (const Vec3f& v : meshes[instances[i].mesh].positions)
           points.push_back(instances[i].to_world.point_rounded(v));
       else if (!box.empty())
-        for (int c = 0; c < 8; ++c)
-          points.push_back({(c & 1 ? box.hi : box.lo).x, (c & 2 ? box.hi : box.lo).y, (c & 4 ? box.hi : box.lo).z});
+        for (int c = 0; c < 8; ++c) points.push_back(box.corner(c));
     }
     world_hull_ = hull_of(points, world_count, [&](size_t t, int k) { return world_triangles[t][k]; });
     if (!world_hull_.on.empty()) world_first_ = std::move(world_first);

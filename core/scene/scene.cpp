@@ -18,9 +18,7 @@ Bounds3f Scene::world_bounds() const {
   for (const Instance& inst : instances) {
     const Bounds3f& mb = mesh_bounds[inst.mesh];
     if (mb.empty()) continue;
-    for (int corner = 0; corner < 8; ++corner)
-      b.extend(Vec3f(inst.to_world.point(
-          Vec3d((corner & 1 ? mb.hi : mb.lo).x, (corner & 2 ? mb.hi : mb.lo).y, (corner & 4 ? mb.hi : mb.lo).z))));
+    for (int corner = 0; corner < 8; ++corner) b.extend(Vec3f(inst.to_world.point(Vec3d(mb.corner(corner)))));
   }
   for (const PointLight& l : point_lights) b.extend(l.position);
   for (const SpotLight& l : spot_lights) b.extend(l.position);
