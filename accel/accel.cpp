@@ -168,25 +168,30 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
   };
   const auto shared = [&](const AccelInstance& inst) { return own_tree(geometry[inst.mesh]); };
 
-  // Every triangle of the unshared instances, in world space, numbered globally. Vertices are
-  // transformed in double and rounded once (as World computes hit points from them).
+  // Every vertex and triangle of the unshared instances, in world space, triangles numbered globally.
+  // Vertices are transformed in double and rounded once (as World computes hit points from them);
+  // they are also the scene hull's points, below.
   std::vector<uint32_t> world_first(instances.size());
-  size_t world_count = 0;
+  std::vector<size_t> point_first(instances.size());
+  size_t world_count = 0, point_count = 0;
   for (uint32_t i = 0; i < instances.size(); ++i) {
     first_prim_.push_back(uint32_t(triangle_count_));
     triangle_count_ += triangles_of(instances[i].mesh);
-    world_first[i] = uint32_t(world_count);
-    if (!shared(instances[i])) world_count += triangles_of(instances[i].mesh);
+    world_first[i] = uint32_t(world_count), point_first[i] = point_count;
+    if (!shared(instances[i]))
+      world_count += triangles_of(instances[i].mesh), point_count += meshes[instances[i].mesh].positions.size();
   }
+  std::vector<Vec3f> world_points(point_count);
   std::vector<Triangle> world_triangles(world_count);
   std::vector<uint32_t> world_ids(world_count);
   tbb::parallel_for(size_t(0), instances.size(), [&](size_t i) {
     if (shared(instances[i])) return;
     const AccelMesh& mesh = meshes[instances[i].mesh];
-    const AffineTransform& m = instances[i].to_world;
+    Vec3f* points = world_points.data() + point_first[i];
+    for (size_t v = 0; v < mesh.positions.size(); ++v)
+      points[v] = instances[i].to_world.point_rounded(mesh.positions[v]);
     for (uint32_t p = 0; p < triangles_of(instances[i].mesh); ++p) {
-      for (int k = 0; k < 3; ++k)
-        world_triangles[world_first[i] + p][k] = m.point_rounded(mesh.positions[mesh.indices[3 * p + k]]);
+      for (int k = 0; k < 3; ++k) world_triangles[world_first[i] + p][k] = points[mesh.indices[3 * p + k]];
       world_ids[world_first[i] + p] = first_prim_[i] + p;
     }
   });
@@ -218,22 +223,15 @@ Accel::Accel(std::span<const AccelMesh> meshes, std::span<const AccelInstance> i
   });
   // The whole scene's convex hull, for the world tree's triangles: the points are their vertices and
   // the corners of the shared meshes' instances' boxes. A ray leaving a triangle on it outwards meets nothing.
-  size_t hull_points = 0;
-  for (const AccelInstance& inst : instances) hull_points += shared(inst) ? 8 : meshes[inst.mesh].positions.size();
-  if (double(world_count) * double(hull_points) <= kHullWork) {
-    std::vector<Vec3f> points;
-    points.reserve(hull_points);
-    for (uint32_t i = 0; i < instances.size(); ++i) {
-      const Bounds3f& box = bounds[world_count + i];
-      if (!shared(instances[i]))
-        for (const Vec3f& v : meshes[instances[i].mesh].positions)
-          points.push_back(instances[i].to_world.point_rounded(v));
-      else if (!box.empty())
-        for (int c = 0; c < 8; ++c) points.push_back(box.corner(c));
-    }
-    world_hull_ = hull_of(points, world_count, [&](size_t t, int k) { return world_triangles[t][k]; });
+  const size_t shared_count = size_t(std::ranges::count_if(instances, shared));
+  if (double(world_count) * double(point_count + 8 * shared_count) <= kHullWork) {
+    for (uint32_t i = 0; i < instances.size(); ++i)
+      if (const Bounds3f& box = bounds[world_count + i]; shared(instances[i]) && !box.empty())
+        for (int c = 0; c < 8; ++c) world_points.push_back(box.corner(c));
+    world_hull_ = hull_of(world_points, world_count, [&](size_t t, int k) { return world_triangles[t][k]; });
     if (!world_hull_.on.empty()) world_first_ = std::move(world_first);
   }
+  world_points = std::vector<Vec3f>();  // freed before the world tree's build, the peak of memory
   world_ = TriangleTree(world_triangles, world_ids, std::move(bounds));
 
   // The instances' inverse transforms, kept where they cost at most an eighth of the trees (a
