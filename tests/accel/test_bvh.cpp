@@ -657,7 +657,7 @@ TEST_CASE("a ray leaving a triangle on a convex hull to the open side cannot mee
       REQUIRE(a->intersect(spawn_ray(p, error, n, -d), back));
       REQUIRE(back.instance == instance);
     }
-    CHECK(skipped > 2000);
+    CHECK(skipped > (a == &accel ? 5000 : 2000));  // flattened, only the scene's hull: fewer triangles
     CHECK(nothing > 500);
     if (a == &accel) CHECK(hits > 500);
   }
