@@ -20,6 +20,24 @@ namespace prism {
 namespace {
 
 constexpr int kTileSize = 16;
+// The frame cut into squares of kTileSize pixels (the last row and column cut short), numbered
+// row by row: the unit of parallel work.
+struct TileGrid {
+  int width, height, across, down;
+  explicit TileGrid(const Camera& camera)
+      : width(camera.width()),
+        height(camera.height()),
+        across((width + kTileSize - 1) / kTileSize),
+        down((height + kTileSize - 1) / kTileSize) {}
+  int64_t count() const { return int64_t(across) * down; }
+  struct Tile {
+    int x0, y0, x1, y1;  // its pixels x0 ≤ x < x1, y0 ≤ y < y1
+  };
+  Tile operator[](int64_t t) const {
+    const int x0 = int(t % across) * kTileSize, y0 = int(t / across) * kTileSize;
+    return {x0, y0, std::min(x0 + kTileSize, width), std::min(y0 + kTileSize, height)};
+  }
+};
 // A pixel's camera rays are made up to this many at once before any is traced: each waits on a
 // chain of divisions and a square root, which overlap across a batch, where one ray at a time
 // held up the start of every sample's traversal (about 6% of Box's time).
@@ -84,19 +102,19 @@ SampledWavelengths<N> iteration_wavelengths(const RenderOptions& options, int s)
 // VCM iteration s: the photons of every pixel's light path for sample s, in tile order.
 template <int N>
 VcmIteration<N> trace_iteration(const BdptScene& scene, const RenderOptions& options, int s,
-                                const SampledWavelengths<N>& lambda, int tiles_x, int tiles_y, RayCounters& rays) {
+                                const SampledWavelengths<N>& lambda, const TileGrid& grid, RayCounters& rays) {
   const float r0 = options.merge_radius > 0 ? options.merge_radius : kMergeRadius * scene.disk.radius;
   const float radius = VcmIteration<N>::radius(r0, s + 1);
   const MisFactors factors = MisFactors::vcm(radius, scene.light_paths);
-  const int64_t tiles = int64_t(tiles_x) * tiles_y;
+  const int64_t tiles = grid.count();
   std::vector<std::vector<Vec3f>> positions(tiles);
   std::vector<std::vector<Photon<N>>> photons(tiles);
   std::vector<RayCounters> counters(tiles);
   parallel_for(tiles, [&](int64_t t) {
     Sampler sampler(options.seed, options.sampler);
-    const int x0 = int(t % tiles_x) * kTileSize, y0 = int(t / tiles_x) * kTileSize;
-    for (int y = y0; y < std::min(y0 + kTileSize, scene.camera.height()); ++y)
-      for (int x = x0; x < std::min(x0 + kTileSize, scene.camera.width()); ++x) {
+    const TileGrid::Tile tile = grid[t];
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x) {
         sampler.start_pixel_sample({x, y}, s);
         trace_photons<N>(scene, lambda, sampler, options.path, factors, counters[t], positions[t], photons[t]);
       }
@@ -169,14 +187,12 @@ void first_hit(const World& world, const Ray& ray, const SampledWavelengths<N>& 
 // meet something.
 std::vector<uint8_t> sky_pixels(const World& world, const Camera& camera) {
   std::vector<uint8_t> sky(size_t(camera.width()) * camera.height(), 0);
-  const int tiles_x = (camera.width() + kTileSize - 1) / kTileSize;
-  const int tiles_y = (camera.height() + kTileSize - 1) / kTileSize;
-  parallel_for(int64_t(tiles_x) * tiles_y, [&](int64_t tile) {
-    const int x0 = int(tile % tiles_x) * kTileSize, y0 = int(tile / tiles_x) * kTileSize;
-    const int x1 = std::min(x0 + kTileSize, camera.width()), y1 = std::min(y0 + kTileSize, camera.height());
-    const bool whole_tile = !world.accel().may_meet(camera.frustum(x0, y0, x1, y1));
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x)
+  const TileGrid grid(camera);
+  parallel_for(grid.count(), [&](int64_t t) {
+    const TileGrid::Tile tile = grid[t];
+    const bool whole_tile = !world.accel().may_meet(camera.frustum(tile.x0, tile.y0, tile.x1, tile.y1));
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x)
         sky[size_t(y) * camera.width() + x] = whole_tile || !world.accel().may_meet(camera.frustum(x, y, x + 1, y + 1));
   });
   return sky;
@@ -187,22 +203,21 @@ struct PassStats {
   uint64_t samples = 0, invalid = 0;
 };
 
-// Takes every active pixel of the tile at (x0, y0) from the samples it has to `end`.
+// Takes every active pixel of the tile from the samples it has to `end`.
 template <int N>
 void render_tile(const World& world, const Camera& camera, const RenderOptions& options, RadianceFn<N> radiance,
-                 const std::optional<Xyz>& sky, const std::vector<uint8_t>& sky_only, Splatting<N> bdpt, int x0, int y0,
-                 int end, const std::vector<uint8_t>& active, Film& film, PassStats& stats) {
+                 const std::optional<Xyz>& sky, const std::vector<uint8_t>& sky_only, Splatting<N> bdpt,
+                 TileGrid::Tile tile, int end, const std::vector<uint8_t>& active, Film& film, PassStats& stats) {
   Sampler sampler(options.seed, options.sampler);
   const bool first_hits = options.aovs & (kAovAlbedo | kAovNormal | kAovDepth);
   const int bins = film.bins().count();
-  const int x1 = std::min(x0 + kTileSize, camera.width()), y1 = std::min(y0 + kTileSize, camera.height());
   // A batch's camera rays and each sample's sampler past its jitter (made once per tile: each
   // batch writes the entries it reads).
   std::array<Ray, kRayBatch> rays;
   std::array<Sampler, kRayBatch> samplers;
   const Film::FixedXyz sky_fixed = Film::to_fixed_xyz(sky.value_or(Xyz{0, 0, 0}));
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x) {
+  for (int y = tile.y0; y < tile.y1; ++y)
+    for (int x = tile.x0; x < tile.x1; ++x) {
       const size_t p = size_t(y) * camera.width() + x;
       if (!active.empty() && !active[p]) continue;
       // Each sample index once, or in the pixels the error estimate replicates twice (error_estimate.h;
@@ -268,13 +283,12 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
   RenderResult result{resume ? std::move(*resume)
                              : RenderState{Film(camera.width(), camera.height(), film_flags, options.spectral_bins)}};
   RenderState& state = result.state;
-  const int tiles_x = (camera.width() + kTileSize - 1) / kTileSize;
-  const int tiles_y = (camera.height() + kTileSize - 1) / kTileSize;
+  const TileGrid grid(camera);
   const int sample_end = options.sample_end > 0 ? options.sample_end : options.spp;
   const int part_spp = sample_end - options.sample_begin;
   const int passes = pass_count(part_spp);
   state.part = {options.sample_begin, sample_end, options.spp, options.crop};
-  Progress progress("render", int64_t(passes - std::min(state.passes, passes)) * tiles_x * tiles_y, options.progress);
+  Progress progress("render", int64_t(passes - std::min(state.passes, passes)) * grid.count(), options.progress);
   std::mutex stats_mutex;
   std::vector<uint8_t> active;  // empty: all pixels
   if (!options.crop.empty()) {
@@ -296,11 +310,10 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
     }
     // Every active pixel to `to` samples; the progress bar advances on the pass's last round.
     const auto render_tiles = [&](int to, const VcmIteration<N>* vcm, const SampledWavelengths<N>* lambda, bool last) {
-      parallel_for(int64_t(tiles_x) * tiles_y, [&](int64_t tile) {
+      parallel_for(grid.count(), [&](int64_t tile) {
         PassStats ps;
         const Splatting<N> bdpt{bdpt_scene ? &*bdpt_scene : nullptr, splats ? &splats->local() : nullptr, vcm, lambda};
-        render_tile<N>(world, camera, options, radiance, sky, sky_only, bdpt, int(tile % tiles_x) * kTileSize,
-                       int(tile / tiles_x) * kTileSize, to, active, state.film, ps);
+        render_tile<N>(world, camera, options, radiance, sky, sky_only, bdpt, grid[tile], to, active, state.film, ps);
         {
           std::lock_guard lock(stats_mutex);
           state.stats.rays += ps.rays;
@@ -314,8 +327,7 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
       // One VCM iteration per sample index: all light paths and their photons first.
       for (int s = options.sample_begin + int(state.film.samples(0)); s < end; ++s) {
         const SampledWavelengths<N> lambda = iteration_wavelengths<N>(options, s);
-        const VcmIteration<N> iteration =
-            trace_iteration<N>(*bdpt_scene, options, s, lambda, tiles_x, tiles_y, state.stats.rays);
+        const VcmIteration<N> iteration = trace_iteration<N>(*bdpt_scene, options, s, lambda, grid, state.stats.rays);
         render_tiles(s + 1, &iteration, &lambda, s + 1 == end);
       }
     } else {
