@@ -27,6 +27,7 @@
 // film's lobes uncompensated (E of the filmed interface is not tabulated; dividing by the bare
 // one's lets a film over rough glass reflect up to 1.5% more than it receives).
 
+#include <limits>
 #include <optional>
 
 #include "materials/bsdf_sample.h"
@@ -194,7 +195,7 @@ class DielectricBsdf {
         for (int i = 0; i < N; ++i) f[i] /= single_scattering_albedo(wo.z, (*lanes_->eta)[i]);
         return f;
       }
-    return single_scattering(wo, wi, h, t, F) / single_scattering_albedo(wo.z, eta_);
+    return single_scattering(wo, wi, h, t, F) / outgoing_albedo(wo.z);
   }
 
   // The selection share from the face's reflectance F at the same facet: without per-lane
@@ -267,6 +268,12 @@ class DielectricBsdf {
     if (thin_) return t.white(std::abs(mu), roughness_);
     return t.interface(std::abs(mu), roughness_, mu > 0 ? eta : 1 / eta);
   }
+  // The same for the index every lane follows, kept for the last μ_o asked: a light sample and
+  // the path's own sample are evaluated from the same wo.
+  float outgoing_albedo(float mu) const {
+    if (!(mu == outgoing_.mu)) outgoing_ = {mu, single_scattering_albedo(mu, eta_)};
+    return outgoing_.e;
+  }
 
   std::optional<BsdfSample<N>> sample_smooth(const Vec3f& wo, float uc) const {
     const SampledSpectrum<N> F = fresnel(cos_theta(wo)), Rs = reflected(F);
@@ -314,6 +321,11 @@ class DielectricBsdf {
   bool thin_;
   float transmission_, specular_;
   [[no_unique_address]] OptionalPart<Extensions, SpectralReflectance<N>> lanes_;
+  struct Outgoing {
+    float mu = std::numeric_limits<float>::quiet_NaN();  // none yet
+    float e = 0;
+  };
+  mutable Outgoing outgoing_;  // a cache: safe because a Bsdf is built and used within one thread
 };
 
 }  // namespace prism
