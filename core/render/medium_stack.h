@@ -36,18 +36,15 @@ class MediumStack {
     entering ? enter(&m) : leave(&m);
   }
 
-  // Beer–Lambert transmittance T = exp(−σ_a(λ) d) over a distance d inside the innermost
-  // material; 1 in vacuum or a clear material. σ_a·d → ∞ (a ray escaping an open mesh) and
-  // exp underflow both give exactly 0, never NaN.
-  template <int N>
-  SampledSpectrum<N> transmittance(float distance, const SampledWavelengths<N>& lambda) const {
+  // σ_a(λ) of the innermost material, or nullptr in vacuum or a clear material.
+  const Spectrum* absorption() const {
     const Dielectric* d = innermost() ? innermost()->dielectric() : nullptr;
-    if (!d || !d->absorption) return SampledSpectrum<N>(1.f);
-    const SampledSpectrum<N> sigma_a = sample(*d->absorption, lambda);
-    SampledSpectrum<N> t;
-    for (int i = 0; i < N; ++i) t[i] = sigma_a[i] > 0 ? std::exp(-sigma_a[i] * distance) : 1.f;
-    return t;
+    return d && d->absorption ? &*d->absorption : nullptr;
   }
+
+  // Beer–Lambert transmittance over a distance inside the innermost material (BeerLambert, below).
+  template <int N>
+  SampledSpectrum<N> transmittance(float distance, const SampledWavelengths<N>& lambda) const;
 
  private:
   void enter(const Material* m) {
@@ -66,5 +63,31 @@ class MediumStack {
   std::array<const Material*, 8> stack_{};
   int size_ = 0;
 };
+
+// Beer–Lambert transmittance T = exp(−σ_a(λ) d) over a distance d inside a path's innermost
+// material; 1 in vacuum or a clear material. σ_a·d → ∞ (a ray escaping an open mesh) and exp
+// underflow both give exactly 0, never NaN. σ_a at the path's wavelengths is kept while the path
+// stays in one material: the segments between its internal reflections reuse it.
+template <int N>
+class BeerLambert {
+ public:
+  SampledSpectrum<N> transmittance(const MediumStack& media, float distance, const SampledWavelengths<N>& lambda) {
+    const Spectrum* absorption = media.absorption();
+    if (!absorption) return SampledSpectrum<N>(1.f);
+    if (absorption != sampled_) sigma_a_ = sample(*absorption, lambda), sampled_ = absorption;
+    SampledSpectrum<N> t;
+    for (int i = 0; i < N; ++i) t[i] = sigma_a_[i] > 0 ? std::exp(-sigma_a_[i] * distance) : 1.f;
+    return t;
+  }
+
+ private:
+  const Spectrum* sampled_ = nullptr;  // σ_a's spectrum sampled in sigma_a_, none yet
+  SampledSpectrum<N> sigma_a_;
+};
+
+template <int N>
+SampledSpectrum<N> MediumStack::transmittance(float distance, const SampledWavelengths<N>& lambda) const {
+  return BeerLambert<N>().transmittance(*this, distance, lambda);
+}
 
 }  // namespace prism

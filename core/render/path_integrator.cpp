@@ -63,6 +63,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
   // is that much farther away (for area lights' solid-angle pdfs).
   float travelled = 0;
   MediumStack media;
+  BeerLambert<N> absorption;
   const PowerLightSampler& light_sampler = world.light_sampler();
   const PathSky<N> sky(world.environment(), lambda);
 
@@ -72,7 +73,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     sampler.start_bounce(vertex);
     ++(vertex == 0 ? counters.primary : counters.secondary);
     const auto si = vertex == 0 && first ? *first : world.intersect(ray, true);
-    if constexpr (Media) beta *= media.transmittance(si ? si->t : kInfinity, lambda);
+    if constexpr (Media) beta *= absorption.transmittance(media, si ? si->t : kInfinity, lambda);
     const float alpha = si ? si->material->blend_opacity(si->at) : 1.f;  // < 1: an alpha BLEND surface, partly a hole
 
     // Light reached without sampling it: full weight after a camera or specular vertex,
