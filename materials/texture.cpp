@@ -61,7 +61,10 @@ std::shared_ptr<const Image> Image::decode(const unsigned char* bytes, size_t si
   return std::make_shared<Image>(w, h, std::move(rgba));
 }
 
-float srgb_to_linear(uint8_t v) {
+namespace {
+
+// srgb_to_linear of every 8-bit value.
+const std::array<float, 256>& srgb_table() {
   static const std::array<float, 256> table = [] {
     std::array<float, 256> t{};
     for (int i = 0; i < 256; ++i) {
@@ -70,8 +73,12 @@ float srgb_to_linear(uint8_t v) {
     }
     return t;
   }();
-  return table[v];
+  return table;
 }
+
+}  // namespace
+
+float srgb_to_linear(uint8_t v) { return srgb_table()[v]; }
 
 std::array<float, 4> Image::mean(bool srgb) const {
   std::array<double, 4> sum{};
@@ -89,6 +96,7 @@ bool Image::any_zero(int channel) const {
 }
 
 Vec2f TextureTransform::apply(Vec2f uv) const {
+  if (rotation == 0) return {uv.x * scale.x + offset.x, uv.y * scale.y + offset.y};  // most textures: no sin, cos
   const float c = std::cos(rotation), s = std::sin(rotation);
   const Vec2f scaled(uv.x * scale.x, uv.y * scale.y);
   // glTF's rotation matrix [[c, s], [−s, c]] (the extension's column-major 3x3).
@@ -118,18 +126,23 @@ std::array<float, 4> Texture::lookup(Vec2f uv, bool srgb) const {
   uv = transform.apply(uv);
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = {0, 0};
   const int w = image->width(), h = image->height();
+  const std::array<float, 256>& linear = srgb_table();
+  // The texel at wrapped indices.
   const auto fetch = [&](int x, int y) {
-    const uint8_t* t = image->texel(wrap_index(x, w, wrap_s), wrap_index(y, h, wrap_t));
+    const uint8_t* t = image->texel(x, y);
     std::array<float, 4> v;
-    for (int c = 0; c < 4; ++c) v[c] = srgb && c < 3 ? srgb_to_linear(t[c]) : t[c] / 255.f;
+    for (int c = 0; c < 4; ++c) v[c] = srgb && c < 3 ? linear[t[c]] : t[c] / 255.f;
     return v;
   };
   // Texel centres sit at half-integers; huge coordinates are clamped before the int cast.
   const float x = std::clamp(uv.x * float(w) - 0.5f, -1e8f, 1e8f), y = std::clamp(uv.y * float(h) - 0.5f, -1e8f, 1e8f);
-  if (nearest) return fetch(int(std::floor(x + 0.5f)), int(std::floor(y + 0.5f)));
+  if (nearest)
+    return fetch(wrap_index(int(std::floor(x + 0.5f)), w, wrap_s), wrap_index(int(std::floor(y + 0.5f)), h, wrap_t));
   const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
   const float tx = x - float(x0), ty = y - float(y0);
-  const auto a = fetch(x0, y0), b = fetch(x0 + 1, y0), c = fetch(x0, y0 + 1), d = fetch(x0 + 1, y0 + 1);
+  const int xa = wrap_index(x0, w, wrap_s), xb = wrap_index(x0 + 1, w, wrap_s);
+  const int ya = wrap_index(y0, h, wrap_t), yb = wrap_index(y0 + 1, h, wrap_t);
+  const auto a = fetch(xa, ya), b = fetch(xb, ya), c = fetch(xa, yb), d = fetch(xb, yb);
   std::array<float, 4> r;
   for (int i = 0; i < 4; ++i) r[i] = (1 - ty) * ((1 - tx) * a[i] + tx * b[i]) + ty * ((1 - tx) * c[i] + tx * d[i]);
   return r;
