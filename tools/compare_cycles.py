@@ -106,7 +106,7 @@ def parse_args():
         a.ladder = sorted({int(x) for x in a.ladder.split(",") if x.strip()})
     except ValueError:
         ap.error("--ladder takes comma-separated integers")
-    if a.equal_error and (not a.ladder or a.ladder[0] < 1 or (a.ref_spp or 2) < 2 or a.repeat < 1):
+    if a.equal_error and (not a.ladder or a.ladder[0] < 1 or (a.ref_spp is not None and a.ref_spp < 2) or a.repeat < 1):
         ap.error("--ladder needs spp >= 1, --ref-spp >= 2 and --repeat >= 1")
     return a
 
@@ -454,7 +454,7 @@ def equal_error(a, harness, exrstats, assets_dir):
         os.makedirs(work, exist_ok=True)
         try:
             s = asset_setup(a, assets_dir, name)
-            ref_spp = a.ref_spp or REFERENCE_SPP.get(name, 2048)
+            ref_spp = a.ref_spp if a.ref_spp is not None else REFERENCE_SPP.get(name, 2048)
             half = ref_spp // 2
             print("\n== %s  %dx%d, %s; references 2 x %d spp" % (name, s["width"], s["height"],
                                           "env " + s["env"] if s["env"] else "its own lights", half), flush=True)
