@@ -60,6 +60,23 @@ TEST_CASE("bilinear filtering blends the four nearest texels") {
   CHECK(t.lookup({0.25f, 0.25f}, false)[0] == Approx(0.5f));   // the corner of four texels
 }
 
+TEST_CASE("bilinear filtering blends across an edge as the wrap mode says") {
+  // Halfway between the last column and the one beyond it (or the first and the one before),
+  // in the top row: alpha = 10·x, so the blend of columns a and b reads 5·(a + b).
+  const auto alpha = [](const Texture& t, float u) { return t.lookup({u, 0.125f}, false)[3] * 255; };
+  const Texture repeat = checker(Wrap::repeat, false), clamped = checker(Wrap::clamp_to_edge, false),
+                mirrored = checker(Wrap::mirrored_repeat, false);
+  CHECK(alpha(repeat, 1.f) == Approx(15));  // columns 3 and 0
+  CHECK(alpha(repeat, 0.f) == Approx(15));  // columns 3 (the one before 0) and 0
+  CHECK(alpha(repeat, 2.f) == Approx(15));
+  CHECK(alpha(repeat, -1.f) == Approx(15));
+  CHECK(alpha(clamped, 1.f) == Approx(30));  // column 3 twice
+  CHECK(alpha(clamped, 0.f) == Approx(0));
+  CHECK(alpha(mirrored, 1.f) == Approx(30));  // column 3 and its mirror image, 3
+  CHECK(alpha(mirrored, 0.f) == Approx(0));
+  CHECK(alpha(mirrored, 2.f) == Approx(0));  // column 0 (mirrored twice) and its mirror image
+}
+
 TEST_CASE("KHR_texture_transform: offset, rotation and scale map coordinates as the extension defines") {
   Texture t = checker();
   t.transform.scale = {0.5f, 0.5f};  // uv ∈ [0,1] covers the top-left 2×2 texels
