@@ -34,7 +34,7 @@ std::optional<LightContribution<N>> light_contribution(const World& world, const
                                                        RayCounters& counters,
                                                        const Vec3f& reflect_axis = {0.f, 0.f, 0.f},
                                                        const PathSky<N>* sky = nullptr) {
-  const auto sample = sample_li(light, LightSampleContext{si.p, si.p_error, si.n, reflect_axis}, u, lambda, sky);
+  auto sample = sample_li(light, LightSampleContext{si.p, si.p_error, si.n, reflect_axis}, u, lambda, sky);
   if (!sample || sample->L.is_zero()) return std::nullopt;
   const Vec3f wi = frame.to_local(sample->wi);
   const bool transmission = wi.z * wo.z < 0;
@@ -44,9 +44,8 @@ std::optional<LightContribution<N>> light_contribution(const World& world, const
   // 22–31% of light samples are blocked on the shared assets with occluders (36% on lobes_all,
   // whose layered BSDFs cost more to evaluate than a shadow ray).
   ++counters.shadow;
-  Ray shadow_ray = sample->shadow_ray;
-  shadow_ray.skip_instance = si.skip_towards(sample->wi);
-  const float T = world.transmittance(shadow_ray);
+  sample->shadow_ray.skip_instance = si.skip_towards(sample->wi);
+  const float T = world.transmittance(sample->shadow_ray);
   if (T == 0) return std::nullopt;
   const BsdfEval<N> e = bsdf_eval(bsdf, wo, wi);
   const SampledSpectrum<N> f = e.f * abs_cos_theta(wi);

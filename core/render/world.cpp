@@ -282,8 +282,9 @@ std::optional<SurfaceInteraction> World::intersect(Ray ray, bool keep_blend) con
   }
 }
 
-float World::transmittance(Ray ray) const {
-  if (!features_.alpha) return accel_.occluded(ray) ? 0.f : 1.f;
+float World::transmittance(const Ray& shadow_ray) const {
+  if (!features_.alpha) return accel_.occluded(shadow_ray) ? 0.f : 1.f;
+  Ray ray = shadow_ray;
   float T = 1;
   for (;;) {
     AccelHit hit;

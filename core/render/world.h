@@ -34,7 +34,7 @@ class World {
   // The fraction of light that gets through along `ray`: 0 if an opaque surface blocks it, else the
   // product of 1 − alpha of the BLEND surfaces it crosses (MASK cut-outs pass it whole). The
   // expectation of `occluded`'s stochastic answer, for shadow rays (Cycles' transparent shadows).
-  float transmittance(Ray ray) const;
+  float transmittance(const Ray& ray) const;
 
   const Scene& scene() const { return scene_; }
   const SceneFeatures& features() const { return features_; }
