@@ -139,25 +139,26 @@ Ray camera_ray(const Camera& camera, Sampler& sampler, Vec2i pixel, int s) {
 // The body of the render: a sample's camera ray (camera_ray) through the radiance estimator to
 // CIE XYZ, from the sampler's stream for (pixel, sample index, seed) alone, the sampler started at
 // the sample and past its jitter. With a sky (sky_xyz), the camera ray is traced here first, and
-// a ray that leaves the scene at once returns nothing: its value is the sky's.
+// a ray that leaves the scene at once gives nothing (false): its value is the sky's. The sample is
+// written into `c`, the caller's: returned, it was copied there by wide loads of its xyz's narrow
+// stores, which x86 cannot forward (a stall per sample).
 template <int N>
-std::optional<CameraSample<N>> camera_sample(const World& world, const RenderOptions& options, RadianceFn<N> radiance,
-                                             const std::optional<Xyz>& sky, Splatting<N>& bdpt, Sampler& sampler,
-                                             const Ray& ray, RayCounters& rays) {
+bool camera_sample(const World& world, const RenderOptions& options, RadianceFn<N> radiance,
+                   const std::optional<Xyz>& sky, Splatting<N>& bdpt, Sampler& sampler, const Ray& ray,
+                   RayCounters& rays, CameraSample<N>& c) {
   const std::optional<SurfaceInteraction> first =
       sky ? world.intersect(ray, true) : std::nullopt;  // as path_radiance would
   if (sky && !first) {
     ++rays.primary;
-    return std::nullopt;
+    return false;
   }
   const Vec2f u_lambda = sampler.get_2d();  // the camera's second dimension, drawn only for a path that needs it
-  CameraSample<N> c;
   c.lambda = bdpt.lambda ? *bdpt.lambda : SampledWavelengths<N>::sample(u_lambda);
   c.L = bdpt.scene ? bdpt_radiance<N>(*bdpt.scene, ray, c.lambda, sampler, options.path, bdpt.vcm, *bdpt.splats, rays,
                                       bdpt.invalid)
                    : radiance(world, ray, c.lambda, sampler, options.path, rays, sky ? &first : nullptr);
   c.xyz = to_xyz(c.L, c.lambda);
-  return c;
+  return true;
 }
 
 // What the first surface along a camera ray shows: its albedo under D65 (as XYZ, converted like
@@ -215,6 +216,7 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
   // batch writes the entries it reads).
   std::array<Ray, kRayBatch> rays;
   std::array<Sampler, kRayBatch> samplers;
+  CameraSample<N> c;  // each traced sample's, written by camera_sample
   const Film::FixedXyz sky_fixed = Film::to_fixed_xyz(sky.value_or(Xyz{0, 0, 0}));
   for (int y = tile.y0; y < tile.y1; ++y)
     for (int x = tile.x0; x < tile.x1; ++x) {
@@ -241,20 +243,18 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
           }
           for (int64_t k = k0; k < k1; ++k) {
             const int r = int(k % replicates);
-            const std::optional<CameraSample<N>> c =
-                camera_sample<N>(world, options, radiance, sky, bdpt, samplers[k - k0], rays[k - k0], stats.rays);
             ++stats.samples;
-            if (!c) {
+            if (!camera_sample<N>(world, options, radiance, sky, bdpt, samplers[k - k0], rays[k - k0], stats.rays, c)) {
               ++sky_samples[r];
               continue;
             }
-            FilmSample fs{c->xyz};
-            if (first_hits) first_hit<N>(world, rays[k - k0], c->lambda, fs);
+            FilmSample fs{c.xyz};
+            if (first_hits) first_hit<N>(world, rays[k - k0], c.lambda, fs);
             if (!film.add(p, fs, r)) ++stats.invalid;
             if (bins)
               for (int i = 0; i < N; ++i)
-                if (c->lambda.pdf()[i] > 0)
-                  film.add_spectral(p, c->lambda[i], double(c->L[i]) / (c->lambda.pdf()[i] * N));
+                if (c.lambda.pdf()[i] > 0)
+                  film.add_spectral(p, c.lambda[i], double(c.L[i]) / (c.lambda.pdf()[i] * N));
           }
         }
       }
