@@ -2,6 +2,7 @@
 
 #include <array>
 #include <chrono>
+#include <new>
 #include <mutex>
 
 #include "base/clock.h"
@@ -153,7 +154,8 @@ bool camera_sample(const World& world, const RenderOptions& options, RadianceFn<
     return false;
   }
   const Vec2f u_lambda = sampler.get_2d();  // the camera's second dimension, drawn only for a path that needs it
-  c.lambda = bdpt.lambda ? *bdpt.lambda : SampledWavelengths<N>::sample(u_lambda);
+  // (Made in place, as render_tile's camera rays are, for the same reason.)
+  ::new (&c.lambda) SampledWavelengths<N>(bdpt.lambda ? *bdpt.lambda : SampledWavelengths<N>::sample(u_lambda));
   c.L = bdpt.scene ? bdpt_radiance<N>(*bdpt.scene, ray, c.lambda, sampler, options.path, bdpt.vcm, *bdpt.splats, rays,
                                       bdpt.invalid)
                    : radiance(world, ray, c.lambda, sampler, options.path, rays, sky ? &first : nullptr);
@@ -238,7 +240,10 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
           const int64_t k1 = std::min(k0 + kRayBatch, last);
           for (int64_t k = k0; k < k1; ++k) {
             if (replicates > 1 || k == first) sampler.start_pixel({x, y}, int(k % replicates));
-            rays[k - k0] = camera_ray(camera, sampler, {x, y}, int(k / replicates));
+            // Made in its slot: a prvalue initialises the object a placement new names, where an
+            // assignment made it in a temporary and copied it, reading back with one wide load
+            // what generate_ray had just stored field by field (x86 cannot forward that: a stall).
+            ::new (&rays[k - k0]) Ray(camera_ray(camera, sampler, {x, y}, int(k / replicates)));
             samplers[k - k0] = sampler;
           }
           for (int64_t k = k0; k < k1; ++k) {
