@@ -1,5 +1,7 @@
 #include "render/path_integrator.h"
 
+#include <new>
+
 #include "materials/dispersive_bsdf.h"
 #include "render/direct_light.h"
 #include "render/medium_stack.h"
@@ -170,7 +172,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     specular_bounce = bs->specular;
     bsdf_pdf_prev = bs->pdf;
     reflect_axis_prev = reflect_axis;
-    ray = si->spawn(wi);
+    ::new (&ray) Ray(si->spawn(wi));  // in place, as render_tile's camera rays are (renderer.cpp)
     travelled = 0;
     if (bs->transmission) {
       eta_scale *= sqr(bs->eta);

@@ -266,19 +266,22 @@ bool World::cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_ble
   return float(h >> 40) * 0x1p-24f >= opacity;
 }
 
-std::optional<SurfaceInteraction> World::intersect(Ray ray, bool keep_blend) const {
+std::optional<SurfaceInteraction> World::intersect(const Ray& ray, bool keep_blend) const {
+  std::optional<Ray> rest;  // past cut-away surfaces, what is left of the ray beyond them
   float travelled = 0;
   for (;;) {
+    const Ray& r = rest ? *rest : ray;
     AccelHit hit;
-    if (!accel_.intersect(ray, hit)) return std::nullopt;
-    SurfaceInteraction si = surface_point(ray, hit);
-    if (!features_.alpha || !cut_away(si, ray, keep_blend)) {
+    if (!accel_.intersect(r, hit)) return std::nullopt;
+    SurfaceInteraction si = surface_point(r, hit);
+    if (!features_.alpha || !cut_away(si, r, keep_blend)) {
       shade(si, hit);
       si.t += travelled;
       return si;
     }
-    travelled += step_beyond(si, ray);
-    if (!(ray.tmax > 0)) return std::nullopt;
+    if (!rest) rest = ray;
+    travelled += step_beyond(si, *rest);
+    if (!(rest->tmax > 0)) return std::nullopt;
   }
 }
 

@@ -26,7 +26,7 @@ class World {
   // The first surface along the ray that is not cut away by its material's alpha (glTF MASK
   // and BLEND; BLEND decided stochastically by a hash of the ray, pbrt-v4 style). With
   // `keep_blend`, BLEND surfaces are returned whole: the caller weighs them by Material::blend_opacity.
-  std::optional<SurfaceInteraction> intersect(Ray ray, bool keep_blend = false) const;
+  std::optional<SurfaceInteraction> intersect(const Ray& ray, bool keep_blend = false) const;
   // Moves `ray` on past the surface it hit at si (the same line, from just beyond that surface);
   // returns how far its origin moved.
   static float step_beyond(const SurfaceInteraction& si, Ray& ray);
