@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <new>
 #include <tuple>
 
 #include "accel/triangle.h"
@@ -179,13 +180,13 @@ Vec3f transform_normal(const std::array<Vec3f, 3>& cofactor, const Vec3f& n) {
 
 }  // namespace
 
-SurfaceInteraction World::surface_point(const Ray& ray, const AccelHit& hit) const {
+void World::surface_point(const Ray& ray, const AccelHit& hit, SurfaceInteraction& si) const {
   const Instance& instance = scene_.instances[hit.instance];
   const Mesh& m = scene_.meshes[instance.mesh];
   const InstanceNormals& normals = instance_normals_[hit.instance];
   const auto& v = hit.v;  // as world_vertices(instance, hit.prim), from the accel's leaf
   const float b[3] = {hit.b0, hit.b1, hit.b2};
-  SurfaceInteraction si;
+  si = SurfaceInteraction{};
   si.p = v[0] * b[0] + v[1] * b[1] + v[2] * b[2];
   si.p_error = (abs(v[0] * b[0]) + abs(v[1] * b[1]) + abs(v[2] * b[2])) * gamma(7);
   si.n = triangle_normal(v[0], v[1], v[2]) * (normals.mirrored ? -1.f : 1.f);
@@ -199,9 +200,8 @@ SurfaceInteraction World::surface_point(const Ray& ray, const AccelHit& hit) con
   if (const auto hull = accel_.hull(hit.instance, hit.prim))
     if (const float side = dot(hull->centroid - si.p, si.n); std::abs(side) > 1e-4f * length(hull->centroid - si.p))
       si.hull_side = side, si.hull_skip = hull->skip;
-  si.at = attribute_mesh_[instance.mesh]->attributes_at(hit.prim, b);
+  ::new (&si.at) SurfacePoint(attribute_mesh_[instance.mesh]->attributes_at(hit.prim, b));  // in place (intersect)
   if (const auto& spectra = spectra_[m.material]) si.at.spectra = &*spectra;
-  return si;
 }
 
 void World::shade(SurfaceInteraction& si, const AccelHit& hit) const {
@@ -267,32 +267,39 @@ bool World::cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_ble
 }
 
 std::optional<SurfaceInteraction> World::intersect(const Ray& ray, bool keep_blend) const {
+  // The hit is made where it is returned: every return names `si`, so the caller's object is `si`.
+  // (Made apart and copied there, the copy read back with wide loads the fields just stored one by
+  // one, which x86 cannot forward: 70% of this function's time went to the stalls.)
+  std::optional<SurfaceInteraction> si(std::in_place);
   std::optional<Ray> rest;  // past cut-away surfaces, what is left of the ray beyond them
   float travelled = 0;
   for (;;) {
     const Ray& r = rest ? *rest : ray;
     AccelHit hit;
-    if (!accel_.intersect(r, hit)) return std::nullopt;
-    SurfaceInteraction si = surface_point(r, hit);
-    if (!features_.alpha || !cut_away(si, r, keep_blend)) {
-      shade(si, hit);
-      si.t += travelled;
+    if (!accel_.intersect(r, hit)) break;
+    surface_point(r, hit, *si);
+    if (!features_.alpha || !cut_away(*si, r, keep_blend)) {
+      shade(*si, hit);
+      si->t += travelled;
       return si;
     }
     if (!rest) rest = ray;
-    travelled += step_beyond(si, *rest);
-    if (!(rest->tmax > 0)) return std::nullopt;
+    travelled += step_beyond(*si, *rest);
+    if (!(rest->tmax > 0)) break;
   }
+  si.reset();
+  return si;
 }
 
 float World::transmittance(const Ray& shadow_ray) const {
   if (!features_.alpha) return accel_.occluded(shadow_ray) ? 0.f : 1.f;
   Ray ray = shadow_ray;
+  SurfaceInteraction si;
   float T = 1;
   for (;;) {
     AccelHit hit;
     if (!accel_.intersect(ray, hit)) return T;
-    const SurfaceInteraction si = surface_point(ray, hit);
+    surface_point(ray, hit, si);
     const Material& m = *si.material;
     if (m.alpha_mode == AlphaMode::opaque) return 0;
     const float opacity = m.opacity(si.at);
