@@ -186,7 +186,6 @@ void World::surface_point(const Ray& ray, const AccelHit& hit, SurfaceInteractio
   const InstanceNormals& normals = instance_normals_[hit.instance];
   const auto& v = hit.v;  // as world_vertices(instance, hit.prim), from the accel's leaf
   const float b[3] = {hit.b0, hit.b1, hit.b2};
-  si = SurfaceInteraction{};
   si.p = v[0] * b[0] + v[1] * b[1] + v[2] * b[2];
   si.p_error = (abs(v[0] * b[0]) + abs(v[1] * b[1]) + abs(v[2] * b[2])) * gamma(7);
   si.n = triangle_normal(v[0], v[1], v[2]) * (normals.mirrored ? -1.f : 1.f);
@@ -286,6 +285,7 @@ std::optional<SurfaceInteraction> World::intersect(const Ray& ray, bool keep_ble
     if (!rest) rest = ray;
     travelled += step_beyond(*si, *rest);
     if (!(rest->tmax > 0)) break;
+    si.emplace();  // fresh for the next surface (surface_point fills a new one)
   }
   si.reset();
   return si;
@@ -294,11 +294,11 @@ std::optional<SurfaceInteraction> World::intersect(const Ray& ray, bool keep_ble
 float World::transmittance(const Ray& shadow_ray) const {
   if (!features_.alpha) return accel_.occluded(shadow_ray) ? 0.f : 1.f;
   Ray ray = shadow_ray;
-  SurfaceInteraction si;
   float T = 1;
   for (;;) {
     AccelHit hit;
     if (!accel_.intersect(ray, hit)) return T;
+    SurfaceInteraction si;
     surface_point(ray, hit, si);
     const Material& m = *si.material;
     if (m.alpha_mode == AlphaMode::opaque) return 0;

@@ -60,7 +60,7 @@ class World {
   std::array<Vec3f, 3> world_vertices(const Instance& inst, uint32_t prim) const;
   // A hit's point, geometric normal, material and texture coordinates (what alpha needs), then its
   // shading normal and tangent (interpolated, normal-mapped): only for the surfaces not cut away.
-  // Both fill `si` in place (see intersect).
+  // Both fill `si` in place (see intersect), surface_point a freshly made one.
   void surface_point(const Ray& ray, const AccelHit& hit, SurfaceInteraction& si) const;
   void shade(SurfaceInteraction& si, const AccelHit& hit) const;
   bool cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_blend) const;
