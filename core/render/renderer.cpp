@@ -2,8 +2,8 @@
 
 #include <array>
 #include <chrono>
-#include <new>
 #include <mutex>
+#include <new>
 
 #include "base/clock.h"
 #include "base/error.h"
