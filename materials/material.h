@@ -294,14 +294,22 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
   const bool layered = p.clearcoat > 0 || p.sheen_color.max() > 0;
   const bool film = p.iridescence > 0 && p.iridescence_thickness > 0;
   if (!layered && !film && p.specular_color == Rgb{1, 1, 1} && p.diffuse_transmission <= 0) {
-    // The plain metallic-roughness model, compiled without the extensions' parts.
-    const ConductorBsdf<N> metal(distribution, n, k, ms && p.metallic > 0);  // weight 0: never evaluated
-    if (p.metallic >= 1) return metal;
+    // The plain metallic-roughness model, compiled without the extensions' parts. Each lobe is
+    // built where the Bsdf keeps it (see PbrBsdf).
+    if (p.metallic >= 1) return Bsdf<N>(std::in_place_type<ConductorBsdf<N>>, distribution, n, k, ms);
     const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
-    const DielectricBsdf<N> dielectric(distribution, eta, color, p.thin_walled, p.transmission, p.specular, ms);
-    if (p.metallic <= 0 && p.transmission >= 1) return dielectric;
+    if (p.metallic <= 0 && p.transmission >= 1)
+      return Bsdf<N>(std::in_place_type<DielectricBsdf<N>>, distribution, eta, color, p.thin_walled, p.transmission,
+                     p.specular, ms);
     if (p.metallic <= 0 && p.transmission <= 0 && p.specular <= 0) return DiffuseBsdf<N>(color);  // no specular layer
-    return PbrBsdf<N>(p.metallic, metal, dielectric, p.transmission, color, distribution.alpha(), eta, p.specular, ms);
+    const auto metal = [&] {  // weight 0: never evaluated
+      return ConductorBsdf<N>(distribution, n, k, ms && p.metallic > 0);
+    };
+    const auto dielectric = [&] {
+      return DielectricBsdf<N>(distribution, eta, color, p.thin_walled, p.transmission, p.specular, ms);
+    };
+    return Bsdf<N>(std::in_place_type<PbrBsdf<N>>, p.metallic, metal, dielectric, p.transmission, color,
+                   distribution.alpha(), eta, p.specular, ms);
   }
 
   // The extensions: a thin film over the metal and the dielectric, a specular colour, diffuse
@@ -309,7 +317,9 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
   std::optional<FilmLanes<N>> film_lanes;
   if (film)
     film_lanes.emplace(ThinFilm{p.iridescence, p.iridescence_thickness, material.iridescence->ior}, lambda, n_front);
-  const ConductorBsdf<N, true> metal(distribution, n, k, ms, p.metallic > 0 ? film_lanes : std::nullopt);
+  const auto metal = [&] {  // weight 0: never evaluated (nor its film's reflectance found)
+    return ConductorBsdf<N, true>(distribution, n, k, ms && p.metallic > 0, film_lanes);
+  };
   const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
   // Per-lane reflectance: the specular colour's indices, the film; and for the diffuse under
   // them, each lane's index (with a film, the one of the film's highest reflectance).
@@ -333,8 +343,10 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
   }
   // A film's interface stays single-scattering (see dielectric_bsdf.h), and so does its E below.
   const bool dielectric_ms = ms && !film;
-  const DielectricBsdf<N, true> dielectric(distribution, eta, color, p.thin_walled, p.transmission, p.specular,
-                                           dielectric_ms, lanes);
+  const auto dielectric = [&] {
+    return DielectricBsdf<N, true>(distribution, eta, color, p.thin_walled, p.transmission, p.specular, dielectric_ms,
+                                   lanes);
+  };
   if (p.diffuse_transmission > 0) {
     extras.diffuse_transmission = p.diffuse_transmission;
     extras.transmitted_albedo = sampled(constant.diffuse_transmission_color, p.diffuse_transmission_color);
@@ -343,9 +355,9 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
   if (p.clearcoat > 0) coat = {p.clearcoat, sqr(p.clearcoat_roughness), 1.5f / n_front[0], at.coat_normal, ms};
   std::optional<typename LayeredBsdf<N>::Sheen> sheen;
   if (p.sheen_color.max() > 0) sheen = {sampled(constant.sheen_color, p.sheen_color), sqr(p.sheen_roughness)};
-  // Built where it is kept, the base inside it (not copied there).
+  // Built where it is kept, the base and its lobes inside it (not copied there).
   return Bsdf<N>(std::in_place_type<LayeredBsdf<N>>, coat, sheen, p.metallic, metal, dielectric, p.transmission, color,
-                 distribution.alpha(), eta, p.specular, dielectric_ms, extras);
+                 distribution.alpha(), eta, p.specular, dielectric_ms, &extras);
 }
 
 // make_bsdf for integrators that follow only the hero wavelength past a λ-dependent index ratio:

@@ -47,14 +47,17 @@ class PbrBsdf {
     std::optional<SampledSpectrum<N>> lane_excess;  // x_λ of a film (see the header)
   };
 
-  // alpha, eta, specular and compensated must be those of `dielectric` (they pick its albedo E).
-  PbrBsdf(float metallic, const ConductorBsdf<N, Extensions>& metal, const DielectricBsdf<N, Extensions>& dielectric,
-          float transmission, const SampledSpectrum<N>& albedo, float alpha, float eta, float specular,
-          bool compensated, const OptionalPart<Extensions, Extras>& extras = {})
+  // alpha, eta, specular and compensated must be those of the dielectric (they pick its albedo E).
+  // `metal` and `dielectric` are callables that make the two lobes, so that each is built where it
+  // is kept: a copy of a lobe just built read what was still being written (a stalled load).
+  template <typename MakeMetal, typename MakeDielectric>
+  PbrBsdf(float metallic, const MakeMetal& metal, const MakeDielectric& dielectric, float transmission,
+          const SampledSpectrum<N>& albedo, float alpha, float eta, float specular, bool compensated,
+          const Extras* extras = nullptr)
       : metallic_(metallic),
         transmission_(transmission),
-        metal_(metal),
-        dielectric_(dielectric),
+        metal_(metal()),
+        dielectric_(dielectric()),
         albedo_(albedo),
         eta_(eta),
         specular_(specular),
@@ -62,11 +65,8 @@ class PbrBsdf {
         roughness_(SpecularAlbedo::roughness(alpha)) {
     if constexpr (Extensions)
       if (extras) {
-        extras_ = Parts{extras->diffuse_transmission, extras->transmitted_albedo, {}};
-        if (extras->lane_etas) {
-          couple_lanes(*extras, specular, compensated);
-          return;  // (e_avg_, for lanes that couple alike, unused)
-        }
+        extras_.emplace(*extras, specular, roughness_, compensated);
+        if (extras_->lanes) return;  // (e_avg_, for lanes that couple alike, unused)
       }
     e_avg_ = specular * SpecularAlbedo::table().average(roughness_, eta, compensated);
   }
@@ -212,18 +212,6 @@ class PbrBsdf {
     }
   }
 
-  // Each lane's index placed on the albedo tables, and its E_avg (see the header).
-  void couple_lanes(const Extras& extras, float specular, bool compensated) {
-    std::array<float, N> eta;
-    for (int i = 0; i < N; ++i) eta[i] = (*extras.lane_etas)[i];
-    extras_->lanes =
-        LaneCoupling{SpecularAlbedo::Lanes<N>(eta), extras.lane_excess.value_or(SampledSpectrum<N>(0.f)), {}};
-    const float white_average = extras.lane_excess ? SpecularAlbedo::table().white_average(roughness_) : 0.f;
-    LaneCoupling& lanes = *extras_->lanes;
-    const std::array<float, N> average = SpecularAlbedo::table().average(roughness_, lanes.eta, compensated);
-    for (int i = 0; i < N; ++i) lanes.e_avg[i] = specular * (average[i] + lanes.excess[i] * white_average);
-  }
-
   // The lobe (0 the metal, 1 the dielectric) a non-delta sample came from, with its own f and pdf.
   struct Sampled {
     int lobe;
@@ -285,14 +273,32 @@ class PbrBsdf {
     return s;
   }
 
+  // The lanes' own coupling: each lane's index placed on the albedo tables once, its film excess
+  // x_λ, and its E_avg (see the header). Built where it is kept, as the lobes are.
   struct LaneCoupling {
-    SpecularAlbedo::Lanes<N> eta;  // each lane's index, placed on the albedo tables once
+    SpecularAlbedo::Lanes<N> eta;
     SampledSpectrum<N> excess, e_avg;
+    LaneCoupling(const Extras& extras, float specular, const SpecularAlbedo::Roughness& roughness, bool compensated)
+        : eta(lane_array(*extras.lane_etas)), excess(extras.lane_excess.value_or(SampledSpectrum<N>(0.f))) {
+      const SpecularAlbedo& table = SpecularAlbedo::table();
+      const float white_average = extras.lane_excess ? table.white_average(roughness) : 0.f;
+      const std::array<float, N> average = table.average(roughness, eta, compensated);
+      for (int i = 0; i < N; ++i) e_avg[i] = specular * (average[i] + excess[i] * white_average);
+    }
+    static std::array<float, N> lane_array(const SampledSpectrum<N>& s) {
+      std::array<float, N> a;
+      for (int i = 0; i < N; ++i) a[i] = s[i];
+      return a;
+    }
   };
   struct Parts {
     float diffuse_transmission;
     SampledSpectrum<N> transmitted_albedo;
     std::optional<LaneCoupling> lanes;
+    Parts(const Extras& extras, float specular, const SpecularAlbedo::Roughness& roughness, bool compensated)
+        : diffuse_transmission(extras.diffuse_transmission), transmitted_albedo(extras.transmitted_albedo) {
+      if (extras.lane_etas) lanes.emplace(extras, specular, roughness, compensated);
+    }
   };
 
   float metallic_, transmission_;
