@@ -33,6 +33,19 @@ struct LightSample {
   Ray shadow_ray;
 };
 
+// A light sample made in the optional its caller keeps (returned by NRVO), its shadow ray made in
+// place by make_ray(): built aside and copied in, it was read with wide loads before the narrow
+// stores that wrote it had landed, a stalled load in every light sample (as render_tile's camera
+// rays were, renderer.cpp).
+template <int N, typename MakeRay>
+std::optional<LightSample<N>> light_sample(const SampledSpectrum<N>& L, const Vec3f& wi, float pdf,
+                                           const MakeRay& make_ray) {
+  std::optional<LightSample<N>> s(std::in_place);
+  s->L = L, s->wi = wi, s->pdf = pdf;
+  ::new (&s->shadow_ray) Ray(make_ray());
+  return s;
+}
+
 // One emissive triangle, emitting from its front side (or both) its material's radiance,
 // uniform or textured, where its alpha leaves it (Material::coverage: 0 where MASK cuts it away,
 // alpha of it under BLEND), as a path that hits it counts it.
@@ -82,7 +95,8 @@ struct AreaLight {
     if (!emits_towards(-wi)) return std::nullopt;
     const float pdf = pdf_solid_angle(distance, wi);
     if (!(pdf > 0.f) || std::isinf(pdf)) return std::nullopt;
-    return LightSample<N>{radiance(b, lambda), wi, pdf, spawn_ray_to(ctx.p, ctx.p_error, ctx.n, p, p_error, n)};
+    return light_sample(radiance(b, lambda), wi, pdf,
+                        [&] { return spawn_ray_to(ctx.p, ctx.p_error, ctx.n, p, p_error, n); });
   }
 };
 
@@ -97,8 +111,8 @@ struct PointLightSource {
     const float d2 = length_squared(wi);
     if (d2 == 0.f) return std::nullopt;
     wi = wi / std::sqrt(d2);
-    return LightSample<N>{sample(*intensity, lambda) / d2, wi, 1.f,
-                          spawn_ray_to(ctx.p, ctx.p_error, ctx.n, position, {}, {})};
+    return light_sample(sample(*intensity, lambda) / d2, wi, 1.f,
+                        [&] { return spawn_ray_to(ctx.p, ctx.p_error, ctx.n, position, {}, {}); });
   }
 };
 
@@ -137,8 +151,8 @@ struct DirectionalLightSource {
   template <int N>
   std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f,
                                           const SampledWavelengths<N>& lambda) const {
-    return LightSample<N>{sample(*illuminance, lambda), -direction, 1.f,
-                          spawn_ray(ctx.p, ctx.p_error, ctx.n, -direction)};
+    return light_sample(sample(*illuminance, lambda), -direction, 1.f,
+                        [&] { return spawn_ray(ctx.p, ctx.p_error, ctx.n, -direction); });
   }
 };
 
@@ -157,7 +171,7 @@ struct EnvironmentLight {
         cosine ? Frame::from_z(ctx.reflect_axis).to_world(sample_cosine_hemisphere(u)) : sample_uniform_sphere(u);
     const float pdf = pdf_li(wi, ctx.reflect_axis);
     if (!(pdf > 0)) return std::nullopt;
-    return LightSample<N>{Le(wi, lambda, sky), wi, pdf, spawn_ray(ctx.p, ctx.p_error, ctx.n, wi)};
+    return light_sample(Le(wi, lambda, sky), wi, pdf, [&] { return spawn_ray(ctx.p, ctx.p_error, ctx.n, wi); });
   }
   template <int N>
   SampledSpectrum<N> Le(const Vec3f&, const SampledWavelengths<N>& lambda,
@@ -181,7 +195,7 @@ struct EnvironmentMapLight {
                                           const SampledWavelengths<N>& lambda) const {
     const auto s = map->sample(u);
     if (!s) return std::nullopt;
-    return LightSample<N>{Le(s->w, lambda), s->w, s->pdf, spawn_ray(ctx.p, ctx.p_error, ctx.n, s->w)};
+    return light_sample(Le(s->w, lambda), s->w, s->pdf, [&] { return spawn_ray(ctx.p, ctx.p_error, ctx.n, s->w); });
   }
   template <int N>
   SampledSpectrum<N> Le(const Vec3f& w, const SampledWavelengths<N>& lambda) const {
