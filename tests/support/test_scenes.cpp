@@ -5,8 +5,10 @@
 #include <array>
 #include <catch2/catch.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "spectral/color_pipeline.h"
@@ -168,9 +170,19 @@ std::string base64(const std::vector<unsigned char>& bytes) {
 }
 
 std::filesystem::path temp_dir(const std::string& name) {
+  struct Made {
+    std::set<std::filesystem::path> dirs;
+    ~Made() {
+      if (std::getenv("PRISM_KEEP_TEST_DIRS")) return;
+      std::error_code ignored;
+      for (const auto& dir : dirs) std::filesystem::remove_all(dir, ignored);
+    }
+  };
+  static Made made;
   const auto dir = std::filesystem::temp_directory_path() / ("prism_test_" + name + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  made.dirs.insert(dir);
   return dir;
 }
 

@@ -60,7 +60,8 @@ TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, i
 // RFC 4648 base64 of bytes (for data URIs in generated glTF files).
 std::string base64(const std::vector<unsigned char>& bytes);
 
-// A fresh empty folder for a test's files.
+// A fresh empty folder for a test's files, removed when the test program ends (kept when the
+// environment sets PRISM_KEEP_TEST_DIRS, to look at them).
 std::filesystem::path temp_dir(const std::string& name);
 
 // Runs the prism executable with arguments; returns its exit code, stderr in `err` and stdout
