@@ -21,6 +21,7 @@
 // the surface is opaque and two-sided: seen from behind, it is the same as from the front.
 
 #include <array>
+#include <new>
 #include <optional>
 
 #include "base/frame.h"
@@ -104,38 +105,50 @@ class PbrBsdf {
     return mixture(wo, wi, lobe_probabilities(e_o), e_o);
   }
 
+  // Every return names s, which is then made where the caller keeps it (NRVO), and the lobe's
+  // sample is made in it: returned through a copy, the sample's narrow stores were read back at once
+  // with wide loads (a stalled load in every sample, as renderer.cpp's camera rays were).
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
+    std::optional<BsdfSample<N>> s;
     if (flips(wo)) {
-      auto s = sample_f(-wo, uc, u);
+      s = sample_f(-wo, uc, u);
       if (s) s->wi = -s->wi;
       return s;
     }
     const float e_o = E_o(wo.z);
     const auto p = lobe_probabilities(e_o);
-    // The lobe is chosen by u.x (within_lobe); uc stays for the lobe's own choice.
-    std::optional<BsdfSample<N>> s;
-    BsdfEval<N> e;
+    // The lobe is chosen by u.x (within_lobe); uc stays for the lobe's own choice. A delta sample
+    // of one lobe is a sample of the mixture scaled by the lobe's weight and probability.
+    std::optional<Sampled> sampled;
+    const auto lobe_sample = [&](int lobe, const auto& bsdf, float weight, float probability) {
+      ::new (&s) std::optional<BsdfSample<N>>(bsdf.sample_f(wo, uc, u));
+      if (!s) return;
+      if (s->specular) {
+        s->f *= weight;
+        s->pdf *= probability;
+      } else {
+        sampled = Sampled{lobe, {s->f, s->pdf}};  // its own f and pdf, not evaluated again
+      }
+    };
     if (u.x < p[0]) {
       u.x = within_lobe(u.x, 0, p[0]);
-      s = metal_.sample_f(wo, uc, u);
-      if (!s) return std::nullopt;
-      if (s->specular) return scaled(*s, metallic_, p[0]);
-      e = mixture(wo, s->wi, p, e_o, Sampled{0, {s->f, s->pdf}});
+      lobe_sample(0, metal_, metallic_, p[0]);
     } else if (u.x < p[0] + p[1]) {
       u.x = within_lobe(u.x, p[0], p[1]);
-      s = dielectric_.sample_f(wo, uc, u);
-      if (!s) return std::nullopt;
-      if (s->specular) return scaled(*s, 1 - metallic_, p[1]);
-      e = mixture(wo, s->wi, p, e_o, Sampled{1, {s->f, s->pdf}});
+      lobe_sample(1, dielectric_, 1 - metallic_, p[1]);
     } else {  // the diffuse base: reflected (p[2]) or transmitted to the far side (p[3])
       const bool far_side = Extensions && u.x >= 1 - p[3];
       u.x = within_lobe(u.x, far_side ? 1 - p[3] : p[0] + p[1], far_side ? p[3] : p[2]);
       Vec3f wi = sample_cosine_hemisphere(u);
       if ((wo.z < 0) != far_side) wi.z = -wi.z;
-      s = BsdfSample<N>{{}, wi, 0.f, false, far_side};
-      e = mixture(wo, wi, p, e_o);
+      s.emplace(SampledSpectrum<N>{}, wi, 0.f, false, far_side);
     }
-    if (!(e.pdf > 0)) return std::nullopt;
+    if (!s || s->specular) return s;
+    const BsdfEval<N> e = mixture(wo, s->wi, p, e_o, sampled);
+    if (!(e.pdf > 0)) {
+      s.reset();
+      return s;
+    }
     s->f = e.f;
     s->pdf = e.pdf;
     return s;
@@ -266,13 +279,6 @@ class PbrBsdf {
     return w;
   }
 
-  // A delta sample of one lobe, as a sample of the mixture.
-  static BsdfSample<N> scaled(BsdfSample<N> s, float weight, float probability) {
-    s.f *= weight;
-    s.pdf *= probability;
-    return s;
-  }
-
   // The lanes' own coupling: each lane's index placed on the albedo tables once, its film excess
   // x_λ, and its E_avg (see the header). Built where it is kept, as the lobes are.
   struct LaneCoupling {
@@ -388,6 +394,7 @@ class LayeredBsdf {
   }
   BsdfEval<N> eval(const Vec3f& wo, const Vec3f& wi) const { return mixture(wo, wi, layer_probabilities(wo)); }
 
+  // Every return names s, each layer's sample made in it (as PbrBsdf::sample_f, for the same reason).
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
     const auto p = layer_probabilities(wo);
     std::optional<BsdfSample<N>> s;
@@ -395,10 +402,13 @@ class LayeredBsdf {
     // The layer is chosen by u.x (within_lobe), as the base chooses its lobe; uc stays for theirs.
     if (u.x < p[0]) {
       u.x = within_lobe(u.x, 0, p[0]);
-      s = coat_.sample_f(to_coat(wo, wo), uc, u);
-      if (!s) return std::nullopt;
+      ::new (&s) std::optional<BsdfSample<N>>(coat_.sample_f(to_coat(wo, wo), uc, u));
+      if (!s) return s;
       s->wi = from_coat(wo, s->wi);
-      if (!same_hemisphere(wo, s->wi)) return std::nullopt;
+      if (!same_hemisphere(wo, s->wi)) {
+        s.reset();
+        return s;
+      }
       if (s->specular) {
         s->f *= coat_weight_;
         s->pdf *= p[0];
@@ -412,12 +422,12 @@ class LayeredBsdf {
       }
     } else if (u.x < p[0] + p[1]) {
       u.x = within_lobe(u.x, p[0], p[1]);
-      s = sheen_.sample_f(wo, 0, u);
+      ::new (&s) std::optional<BsdfSample<N>>(sheen_.sample_f(wo, 0, u));
       layer = 1;
     } else {
       u.x = within_lobe(u.x, p[0] + p[1], p[2]);
-      s = base_.sample_f(wo, uc, u);
-      if (!s) return std::nullopt;
+      ::new (&s) std::optional<BsdfSample<N>>(base_.sample_f(wo, uc, u));
+      if (!s) return s;
       if (s->specular) {
         s->f *= base_scale(wo, s->wi);
         s->pdf *= p[2];
@@ -425,10 +435,13 @@ class LayeredBsdf {
       }
       layer = 2;
     }
-    if (!s) return std::nullopt;
+    if (!s) return s;
     // The sampled layer's own f and pdf come with its sample.
     const BsdfEval<N> e = mixture(wo, s->wi, p, Sampled{layer, {s->f, s->pdf}});
-    if (!(e.pdf > 0)) return std::nullopt;
+    if (!(e.pdf > 0)) {
+      s.reset();
+      return s;
+    }
     s->f = e.f;
     s->pdf = e.pdf;
     return s;
