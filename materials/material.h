@@ -294,8 +294,8 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
   const bool layered = p.clearcoat > 0 || p.sheen_color.max() > 0;
   const bool film = p.iridescence > 0 && p.iridescence_thickness > 0;
   if (!layered && !film && p.specular_color == Rgb{1, 1, 1} && p.diffuse_transmission <= 0) {
-    // The plain metallic-roughness model, compiled without the extensions' parts. Each lobe is
-    // built where the Bsdf keeps it (see PbrBsdf).
+    // The plain metallic-roughness model, compiled without the extensions' parts. The conductor,
+    // the dielectric and the PbrBsdf are built where the Bsdf keeps them (see PbrBsdf).
     if (p.metallic >= 1) return Bsdf<N>(std::in_place_type<ConductorBsdf<N>>, distribution, n, k, ms);
     const float eta = ior(material.dielectric.ior, lambda[0]) / n_front[0];
     if (p.metallic <= 0 && p.transmission >= 1)

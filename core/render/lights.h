@@ -4,6 +4,7 @@
 // towards the light from a point, with its solid-angle pdf and the shadow ray to test); the
 // environments also give the radiance and pdf of any direction a ray escapes in.
 
+#include <new>
 #include <optional>
 #include <type_traits>
 #include <variant>
@@ -135,10 +136,12 @@ struct SpotLightSource {
   template <int N>
   std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f u,
                                           const SampledWavelengths<N>& lambda) const {
-    auto s = point.sample_li(ctx, u, lambda);
+    auto s = point.sample_li(ctx, u, lambda);  // every return names s (see light_sample)
     const float a = s ? attenuation(dot(direction, -s->wi)) : 0.f;
-    if (a == 0.f) return std::nullopt;
-    s->L *= a;
+    if (a == 0.f)
+      s.reset();
+    else
+      s->L *= a;
     return s;
   }
 };
