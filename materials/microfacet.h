@@ -26,14 +26,15 @@ class TrowbridgeReitz {
   // The isotropic roughness of equal area, √(α_x α_y), for tables over isotropic lobes.
   float alpha() const { return ax_ == ay_ ? ax_ : std::sqrt(ax_ * ay_); }
 
-  // D(m) = 1 / (π α_x α_y cos⁴θ_m (1 + tan²θ_m (cos²φ_m/α_x² + sin²φ_m/α_y²))²), the tangent
-  // term from the components, not from 1 − cos²θ, which cancels to nothing near the normal where
-  // the narrowest lobes live.
+  // D(m) = 1 / (π α_x α_y cos⁴θ_m (1 + tan²θ_m (cos²φ_m/α_x² + sin²φ_m/α_y²))²)
+  //      = 1 / (π α_x α_y (m_z² + m_x²/α_x² + m_y²/α_y²)²)  for a unit m,
+  // the tangent term from the components, not from 1 − cos²θ, which cancels to nothing near the
+  // normal where the narrowest lobes live.
   float D(const Vec3f& m) const {
     const float cos2 = m.z * m.z;
     if (cos2 <= 0) return 0;
-    const float e = 1 + (sqr(m.x / ax_) + sqr(m.y / ay_)) / cos2;
-    return 1 / (kPi * ax_ * ay_ * cos2 * cos2 * e * e);
+    const float s = cos2 + sqr(m.x / ax_) + sqr(m.y / ay_);
+    return 1 / (kPi * ax_ * ay_ * s * s);
   }
 
   // Λ(w) = (√(1 + α²(φ) tan²θ) − 1) / 2,  α²(φ) tan²θ = (α_x² x² + α_y² y²) / z²
@@ -53,7 +54,8 @@ class TrowbridgeReitz {
   struct Facet {
     float D, G, G1_o;
   };
-  Facet facet(const Vec3f& wo, const Vec3f& wi, const Vec3f& m) const {
+  // (Always inlined: called out of line, its result came back through memory, read at once.)
+  [[gnu::always_inline]] Facet facet(const Vec3f& wo, const Vec3f& wi, const Vec3f& m) const {
     const float lambda_o = lambda(wo);
     return {D(m), 1 / (1 + lambda_o + lambda(wi)), 1 / (1 + lambda_o)};
   }
