@@ -60,16 +60,16 @@ class PbrBsdf {
         metal_(metal()),
         dielectric_(dielectric()),
         albedo_(albedo),
-        eta_(eta),
         specular_(specular),
         compensated_(compensated),
-        roughness_(SpecularAlbedo::roughness(alpha)) {
+        roughness_(SpecularAlbedo::roughness(alpha)),
+        albedo_curve_(SpecularAlbedo::table().curve(roughness_, eta, compensated)) {
     if constexpr (Extensions)
       if (extras) {
         extras_.emplace(*extras, specular, roughness_, compensated);
         if (extras_->lanes) return;  // (e_avg_, for lanes that couple alike, unused)
       }
-    e_avg_ = specular * SpecularAlbedo::table().average(roughness_, eta, compensated);
+    e_avg_ = specular * albedo_curve_.average;
   }
 
   bool is_specular() const {
@@ -169,7 +169,7 @@ class PbrBsdf {
   }
 
   float E(float mu) const {
-    return specular_ * SpecularAlbedo::table().E(std::abs(mu), roughness_, eta_, compensated_);
+    return specular_ * SpecularAlbedo::E(albedo_curve_, std::abs(mu));
   }
   // E(μ_o), kept for the next evaluation from the same wo (a path evaluates the BSDF of one hit
   // from one wo: towards its light samples and its BSDF sample).
@@ -311,9 +311,10 @@ class PbrBsdf {
   ConductorBsdf<N, Extensions> metal_;
   DielectricBsdf<N, Extensions> dielectric_;
   SampledSpectrum<N> albedo_;
-  float eta_, specular_;
+  float specular_;
   bool compensated_;
   SpecularAlbedo::Roughness roughness_;  // the specular lobe's α, on the albedo tables
+  SpecularAlbedo::Curve albedo_curve_;   // its E(μ) for its α and η
   float e_avg_ = 0;                      // E_avg of the diffuse coupling when every lane couples alike
   [[no_unique_address]] OptionalPart<Extensions, Parts> extras_;
   struct Outgoing {  // what depends on wo alone (E_o), for the last |μ_o| asked
@@ -357,10 +358,9 @@ class LayeredBsdf {
       : base_(base...),
         coat_(TrowbridgeReitz(coat ? coat->alpha : 0), coat ? coat->eta : 1, SampledSpectrum<N>(1.f), false, 0, 1,
               coat && coat->compensated),
-        coat_compensated_(coat && coat->compensated),
         coat_weight_(coat ? coat->weight : 0),
-        coat_roughness_(SpecularAlbedo::roughness(coat ? coat->alpha : 0)),
-        coat_eta_(coat ? std::max(coat->eta, 1.f) : 1),
+        coat_albedo_(SpecularAlbedo::table().curve(SpecularAlbedo::roughness(coat ? coat->alpha : 0),
+                                                   coat ? std::max(coat->eta, 1.f) : 1, coat && coat->compensated)),
         coat_tilted_(coat && coat->normal != Vec3f(0, 0, 1)),
         coat_frame_(Frame::from_z(coat_tilted_ ? coat->normal : Vec3f(0, 0, 1))),
         sheen_roughness_(SheenRoughness::of(sheen ? sheen->alpha : 1)),
@@ -462,7 +462,7 @@ class LayeredBsdf {
   // The coat's albedo towards w (none from below the coat's own horizon).
   float coat_E(const Vec3f& w) const {
     const float mu = (coat_tilted_ ? dot(w.z < 0 ? -w : w, coat_frame_.z) : std::abs(w.z));
-    return mu > 0 ? coat_weight_ * SpecularAlbedo::table().E(mu, coat_roughness_, coat_eta_, coat_compensated_) : 0.f;
+    return mu > 0 ? coat_weight_ * SpecularAlbedo::E(coat_albedo_, mu) : 0.f;
   }
   float sheen_E(float mu) const { return sheen_weight_ * SheenAlbedo::table().E(std::abs(mu), sheen_roughness_.cell); }
   // The coat's and the sheen's albedos towards wo, kept for the next evaluation from the same wo.
@@ -526,10 +526,8 @@ class LayeredBsdf {
 
   PbrBsdf<N, true> base_;
   DielectricBsdf<N> coat_;
-  bool coat_compensated_;
   float coat_weight_;
-  SpecularAlbedo::Roughness coat_roughness_;  // the coat's α on the albedo tables, found once
-  float coat_eta_;
+  SpecularAlbedo::Curve coat_albedo_;  // the coat's E(μ), found once
   bool coat_tilted_;
   Frame coat_frame_;
   SheenRoughness sheen_roughness_;  // what the sheen's α gives (its place on the albedo table: .cell)

@@ -18,12 +18,6 @@ Point point(const SpecularAlbedo::Direction& d) { return {d.a, d.m, d.ta, d.tm};
 
 const Grid& reflection(int h, bool compensated) { return compensated ? specular[h].r_compensated : specular[h].r; }
 
-// The reflection tables at p, interpolated to η.
-float reflection_at(const Point& p, float eta, bool compensated) {
-  const Lerp h = locate_eta(eta);
-  return (1 - h.t) * reflection(h.i, compensated).at(p) + h.t * reflection(h.i + 1, compensated).at(p);
-}
-
 }  // namespace
 
 SpecularAlbedo::Roughness SpecularAlbedo::roughness(float alpha) {
@@ -51,14 +45,20 @@ void SpecularAlbedo::E(const Direction& d, int first, int last, bool compensated
   for (int h = first; h <= last; ++h) out[h - first] = reflection(h, compensated).at(p);
 }
 
-float SpecularAlbedo::E(float mu, const Roughness& r, float eta, bool compensated) const {
-  return smooth(r) ? fresnel_dielectric(mu, eta) : reflection_at(point(mu, r), eta, compensated);
-}
-
-float SpecularAlbedo::average(const Roughness& r, float eta, bool compensated) const {
-  const Lerp h = locate_eta(eta);
+SpecularAlbedo::Curve SpecularAlbedo::curve(const Roughness& r, float eta, bool compensated) const {
+  const Index h = index(eta);
+  const Grid &below = reflection(h.h, compensated), &above = reflection(h.h + 1, compensated);
+  // The four (α, η) corners' rows over μ, weighted bilinearly: one pass over contiguous nodes (SIMD).
+  const float* rows[4] = {&below.e[r.a * kMu], &below.e[(r.a + 1) * kMu], &above.e[r.a * kMu],
+                          &above.e[(r.a + 1) * kMu]};
+  const float w[4] = {(1 - h.t) * (1 - r.ta), (1 - h.t) * r.ta, h.t * (1 - r.ta), h.t * r.ta};
+  Curve c;
+  for (int m = 0; m < kMu; ++m) c.e[m] = w[0] * rows[0][m] + w[1] * rows[1][m] + w[2] * rows[2][m] + w[3] * rows[3][m];
   const Lerp a{r.a, r.ta};
-  return (1 - h.t) * reflection(h.i, compensated).average(a) + h.t * reflection(h.i + 1, compensated).average(a);
+  c.average = (1 - h.t) * below.average(a) + h.t * above.average(a);
+  c.eta = eta;
+  c.smooth = smooth(r);
+  return c;
 }
 
 void SpecularAlbedo::average(const Roughness& r, int first, int last, bool compensated, std::span<float> out) const {

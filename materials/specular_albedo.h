@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <span>
 
 #include "materials/albedo_tables.h"
@@ -103,8 +104,20 @@ class SpecularAlbedo {
     E(d, lanes.first, lanes.last, compensated, at_nodes);
     return lanes.interpolate(at_nodes);
   }
-  float E(float mu, const Roughness& r, float eta, bool compensated) const;
-  float average(const Roughness& r, float eta, bool compensated) const;
+  // E along the tables' μ nodes for one α and η, and its E_avg: found once by a lobe of one index
+  // that looks up E at several μ per shading point (the diffuse coupling: μ_o, then each μ_i), so
+  // that each look-up is one interpolation along μ. A smooth lobe's E is the exact Fresnel.
+  struct Curve {
+    std::array<float, albedo_tables::kMu> e;
+    float average, eta;
+    bool smooth;
+  };
+  Curve curve(const Roughness& r, float eta, bool compensated) const;
+  static float E(const Curve& c, float mu) {
+    if (c.smooth) return fresnel_dielectric(mu, c.eta);
+    const albedo_tables::Lerp m = albedo_tables::locate(std::sqrt(std::max(mu, 0.f)), 1, albedo_tables::kMu);
+    return (1 - m.t) * c.e[m.i] + m.t * c.e[m.i + 1];
+  }
   // The averages for each lane's index, as E above.
   template <int N>
   std::array<float, N> average(const Roughness& r, const Lanes<N>& lanes, bool compensated) const {
