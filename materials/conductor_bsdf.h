@@ -66,13 +66,13 @@ class ConductorBsdf {
     const TrowbridgeReitz::Facet t = distribution_.facet(wo, wi, *wm);
     const SampledSpectrum<N> f = reflectance(dot(wo, *wm)) * (t.D * t.G / (4 * wo.z * wi.z));
     return {compensate_ ? f * multiple_scattering(wo.z) : f,
-            TrowbridgeReitz::D_visible(wo, *wm, t) / (4 * abs_dot(wo, *wm))};
+            TrowbridgeReitz::reflected_pdf(wo, t)};
   }
 
-  // Visible-normal sampling: pdf(wi) = D_wo(m) / (4 |wo·m|).
+  // Visible-normal sampling: pdf(wi) = D_wo(m) / (4 |wo·m|) = G1(wo) D(m) / (4 |cos θ_o|).
   float pdf(Vec3f wo, Vec3f wi) const {
     const auto wm = half_vector(wo, wi);
-    return wm ? distribution_.D_visible(wo, *wm) / (4 * abs_dot(wo, *wm)) : 0.f;
+    return wm ? distribution_.reflected_pdf(wo, *wm) : 0.f;
   }
 
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float, Vec2f u) const {

@@ -195,7 +195,7 @@ class DielectricBsdf {
         for (int i = 0; i < N; ++i) f[i] /= single_scattering_albedo(wo.z, (*lanes_->eta)[i]);
         return f;
       }
-    return single_scattering(wo, wi, h, t, F) / outgoing_albedo(wo.z);
+    return single_scattering(wo, wi, h, t, F) * outgoing_compensation(wo.z);
   }
 
   // The selection share from the face's reflectance F at the same facet: without per-lane
@@ -210,11 +210,10 @@ class DielectricBsdf {
   float pdf(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, const TrowbridgeReitz::Facet& t, float face) const {
     const auto [R, T] = shares(face);
     if (R + T <= 0) return 0.f;
-    const float Dv = TrowbridgeReitz::D_visible(wo, h.wm, t);
-    if (h.reflection) return Dv / (4 * abs_dot(wo, h.wm)) * R / (R + T);
-    if (thin_) return Dv / (4 * abs_dot(wo, h.wm)) * T / (R + T);
+    if (h.reflection || thin_)  // the far side's lobe mirrors the reflection
+      return TrowbridgeReitz::reflected_pdf(wo, t) * (h.reflection ? R : T) / (R + T);
     const float dwm_dwi = abs_dot(wi, h.wm) / sqr(dot(wi, h.wm) + dot(wo, h.wm) / h.eta_p);
-    return Dv * dwm_dwi * T / (R + T);
+    return TrowbridgeReitz::D_visible(wo, h.wm, t) * dwm_dwi * T / (R + T);
   }
 
   // The microfacet normal that takes wo to wi (facing +z), or nothing for a smooth surface,
@@ -268,11 +267,11 @@ class DielectricBsdf {
     if (thin_) return t.white(std::abs(mu), roughness_);
     return t.interface(std::abs(mu), roughness_, mu > 0 ? eta : 1 / eta);
   }
-  // The same for the index every lane follows, kept for the last μ_o asked: a light sample and
+  // 1 / E(μ_o) for the index every lane follows, kept for the last μ_o asked: a light sample and
   // the path's own sample are evaluated from the same wo.
-  float outgoing_albedo(float mu) const {
-    if (!(mu == outgoing_.mu)) outgoing_ = {mu, single_scattering_albedo(mu, eta_)};
-    return outgoing_.e;
+  float outgoing_compensation(float mu) const {
+    if (!(mu == outgoing_.mu)) outgoing_ = {mu, 1 / single_scattering_albedo(mu, eta_)};
+    return outgoing_.inverse_e;
   }
 
   std::optional<BsdfSample<N>> sample_smooth(const Vec3f& wo, float uc) const {
@@ -323,7 +322,7 @@ class DielectricBsdf {
   [[no_unique_address]] OptionalPart<Extensions, SpectralReflectance<N>> lanes_;
   struct Outgoing {
     float mu = std::numeric_limits<float>::quiet_NaN();  // none yet
-    float e = 0;
+    float inverse_e = 0;
   };
   mutable Outgoing outgoing_;  // a cache: safe because a Bsdf is built and used within one thread
 };

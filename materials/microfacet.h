@@ -45,10 +45,6 @@ class TrowbridgeReitz {
   float G1(const Vec3f& w) const { return 1 / (1 + lambda(w)); }
   float G(const Vec3f& wo, const Vec3f& wi) const { return 1 / (1 + lambda(wo) + lambda(wi)); }
 
-  // Density of visible normals seen from w: D_w(m) = G1(w) |w·m| D(m) / |cos θ_w| (for w below
-  // the surface, the normals visible from −w).
-  float D_visible(const Vec3f& w, const Vec3f& m) const { return D_visible(w, m, Facet{D(m), 0, G1(w)}); }
-
   // What a lobe's f and pdf share at one microfacet normal m (Tungsten's eval: one pass for both):
   // D(m), G(wo, wi) and G1(wo), Λ(wo) found once for the two.
   struct Facet {
@@ -59,11 +55,19 @@ class TrowbridgeReitz {
     const float lambda_o = lambda(wo);
     return {D(m), 1 / (1 + lambda_o + lambda(wi)), 1 / (1 + lambda_o)};
   }
-  // D_visible(wo, m) from the facet's terms (G unused).
+  // Density of visible normals seen from wo: D_wo(m) = G1(wo) |wo·m| D(m) / |cos θ_o| (for wo below
+  // the surface, the normals visible from −wo), from the facet's terms (G unused).
   static float D_visible(const Vec3f& wo, const Vec3f& m, const Facet& t) {
     const float cos_w = std::abs(wo.z);
     return cos_w > 0 ? t.G1_o * abs_dot(wo, m) * t.D / cos_w : 0.f;
   }
+  // The pdf of wo reflected about a visible normal m: D_wo(m) / (4 |wo·m|) = G1(wo) D(m) / (4 |cos θ_o|),
+  // the reflection's Jacobian 1 / (4 |wo·m|) cancelling D_wo's |wo·m|.
+  static float reflected_pdf(const Vec3f& wo, const Facet& t) {
+    const float cos_w = std::abs(wo.z);
+    return cos_w > 0 ? t.G1_o * t.D / (4 * cos_w) : 0.f;
+  }
+  float reflected_pdf(const Vec3f& wo, const Vec3f& m) const { return reflected_pdf(wo, Facet{D(m), 0, G1(wo)}); }
 
   // A visible normal from w (taken in the upper hemisphere), distributed as D_visible(w, ·).
   Vec3f sample_visible_normal(Vec3f w, Vec2f u) const {
