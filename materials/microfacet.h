@@ -69,7 +69,7 @@ class TrowbridgeReitz {
   }
   float reflected_pdf(const Vec3f& wo, const Vec3f& m) const { return reflected_pdf(wo, Facet{D(m), 0, G1(wo)}); }
 
-  // A visible normal from w (taken in the upper hemisphere), distributed as D_visible(w, ·).
+  // A visible normal from w (taken in the upper hemisphere), distributed as D_w(m) (D_visible).
   Vec3f sample_visible_normal(Vec3f w, Vec2f u) const {
     if (w.z < 0) w = -w;
     const Vec3f wh = normalize(Vec3f(ax_ * w.x, ay_ * w.y, w.z));  // stretch to the hemisphere configuration

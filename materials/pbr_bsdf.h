@@ -359,8 +359,9 @@ class LayeredBsdf {
         coat_(TrowbridgeReitz(coat ? coat->alpha : 0), coat ? coat->eta : 1, SampledSpectrum<N>(1.f), false, 0, 1,
               coat && coat->compensated),
         coat_weight_(coat ? coat->weight : 0),
-        coat_albedo_(SpecularAlbedo::table().curve(SpecularAlbedo::roughness(coat ? coat->alpha : 0),
-                                                   coat ? std::max(coat->eta, 1.f) : 1, coat && coat->compensated)),
+        coat_albedo_(coat ? SpecularAlbedo::table().curve(SpecularAlbedo::roughness(coat->alpha),
+                                                          std::max(coat->eta, 1.f), coat->compensated)
+                          : SpecularAlbedo::Curve{}),  // no coat: weight 0
         coat_tilted_(coat && coat->normal != Vec3f(0, 0, 1)),
         coat_frame_(Frame::from_z(coat_tilted_ ? coat->normal : Vec3f(0, 0, 1))),
         sheen_roughness_(SheenRoughness::of(sheen ? sheen->alpha : 1)),

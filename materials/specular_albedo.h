@@ -118,7 +118,7 @@ class SpecularAlbedo {
     const albedo_tables::Lerp m = albedo_tables::locate(std::sqrt(std::max(mu, 0.f)), 1, albedo_tables::kMu);
     return (1 - m.t) * c.e[m.i] + m.t * c.e[m.i + 1];
   }
-  // The averages for each lane's index, as E above.
+  // The averages for each lane's index, as the lanes' E above.
   template <int N>
   std::array<float, N> average(const Roughness& r, const Lanes<N>& lanes, bool compensated) const {
     std::array<float, albedo_tables::kEta> at_nodes;
