@@ -65,11 +65,7 @@ class PbrBsdf {
         roughness_(SpecularAlbedo::roughness(alpha)),
         albedo_curve_(SpecularAlbedo::table().curve(roughness_, eta, compensated)) {
     if constexpr (Extensions)
-      if (extras) {
-        extras_.emplace(*extras, specular, roughness_, compensated);
-        if (extras_->lanes) return;  // (e_avg_, for lanes that couple alike, unused)
-      }
-    e_avg_ = specular * albedo_curve_.average;
+      if (extras) extras_.emplace(*extras, specular, roughness_, compensated);
   }
 
   bool is_specular() const {
@@ -194,7 +190,8 @@ class PbrBsdf {
   // The coupling factor (1 − E(μ_o))(1 − E(μ_i)) / (1 − E_avg): one value, or one per lane;
   // e_o = E(μ_o), found with the lobe probabilities.
   float scalar_coupling(float e_o, const Vec3f& wi) const {
-    return e_avg_ < 1 ? (1 - e_o) * (1 - E(wi.z)) / (1 - e_avg_) : 0.f;
+    const float e_avg = specular_ * albedo_curve_.average;
+    return e_avg < 1 ? (1 - e_o) * (1 - E(wi.z)) / (1 - e_avg) : 0.f;
   }
   auto coupling(const Vec3f& wo, float e_o, const Vec3f& wi) const {
     if constexpr (!Extensions) {
@@ -314,8 +311,7 @@ class PbrBsdf {
   float specular_;
   bool compensated_;
   SpecularAlbedo::Roughness roughness_;  // the specular lobe's α, on the albedo tables
-  SpecularAlbedo::Curve albedo_curve_;   // its E(μ) for its α and η
-  float e_avg_ = 0;                      // E_avg of the diffuse coupling when every lane couples alike
+  SpecularAlbedo::Curve albedo_curve_;   // its E(μ) and E_avg for its α and η
   [[no_unique_address]] OptionalPart<Extensions, Parts> extras_;
   struct Outgoing {  // what depends on wo alone (E_o), for the last |μ_o| asked
     float mu = -1;   // none yet
