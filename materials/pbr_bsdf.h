@@ -137,7 +137,7 @@ class PbrBsdf {
       u.x = within_lobe(u.x, far_side ? 1 - p[3] : p[0] + p[1], far_side ? p[3] : p[2]);
       Vec3f wi = sample_cosine_hemisphere(u);
       if ((wo.z < 0) != far_side) wi.z = -wi.z;
-      s.emplace(SampledSpectrum<N>{}, wi, 0.f, false, far_side);
+      s = BsdfSample<N>{SampledSpectrum<N>{}, wi, 0.f, false, far_side};
     }
     if (!s || s->specular) return s;
     const BsdfEval<N> e = mixture(wo, s->wi, p, e_o, sampled);

@@ -147,7 +147,7 @@ inline float film_coupling_index(float n_film, float eta) {
 inline int film_excess_cell(float n_film, float eta) {
   using namespace albedo_tables;
   const float u = (n_film - 1) * (kFilmSteps / 2.f), v = (eta - 1) * (kFilmSteps / 2.f);
-  return (u >= 0) & (v >= 0) & (u < kFilmSteps) & (v < kFilmSteps) ? int(u) * kFilmSteps + int(v) : -1;
+  return ((u >= 0) & (v >= 0) & (u < kFilmSteps) & (v < kFilmSteps)) ? int(u) * kFilmSteps + int(v) : -1;
 }
 // film_reflectance_excess_exact, tabulated over n_f, η ∈ [1, 3) at build time and read as the
 // largest of a cell's corners; outside the table, computed.
@@ -240,7 +240,7 @@ struct FilmLanes {
     // reduction in a loop of its own, which GCC runs on all lanes at once; folded into the loop
     // above, it left both scalar.)
     int propagates = 1;
-    for (int i = 0; i < N; ++i) propagates &= (ior[i] * ior[i] > s2) & (metal || n_re[i] * n_re[i] > s2);
+    for (int i = 0; i < N; ++i) propagates &= int(ior[i] * ior[i] > s2) & int(metal || n_re[i] * n_re[i] > s2);
     if (!propagates) return std::nullopt;
     SampledSpectrum<N> R;
     for (int i = 0; i < N; ++i) {

@@ -88,16 +88,16 @@ struct AreaLight {
   template <int N>
   std::optional<LightSample<N>> sample_li(const LightSampleContext& ctx, Vec2f u,
                                           const SampledWavelengths<N>& lambda) const {
-    const auto [b, p, p_error] = sample_point(u);
-    Vec3f wi = p - ctx.p;
+    const Point q = sample_point(u);
+    Vec3f wi = q.p - ctx.p;
     const float distance = length(wi);
     if (distance == 0.f) return std::nullopt;
     wi = wi / distance;
     if (!emits_towards(-wi)) return std::nullopt;
     const float pdf = pdf_solid_angle(distance, wi);
     if (!(pdf > 0.f) || std::isinf(pdf)) return std::nullopt;
-    return light_sample(radiance(b, lambda), wi, pdf,
-                        [&] { return spawn_ray_to(ctx.p, ctx.p_error, ctx.n, p, p_error, n); });
+    return light_sample(radiance(q.b, lambda), wi, pdf,
+                        [&] { return spawn_ray_to(ctx.p, ctx.p_error, ctx.n, q.p, q.p_error, n); });
   }
 };
 
