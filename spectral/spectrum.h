@@ -10,6 +10,7 @@
 //   RgbAbsorptionSpectrum       absorption coefficient whose transmittance over a distance is an RGB colour
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <variant>
@@ -51,6 +52,25 @@ class DenselySampledSpectrum {
     const int i = std::min(int(x), int(values_.size()) - 2);
     const float t = x - float(i);
     return (1.f - t) * values_[i] + t * values_[i + 1];
+  }
+  // The same at all of a path's wavelengths: rows and fractions on all lanes at once (SIMD),
+  // then a pair of loads per lane (a constant environment's radiance, once per path).
+  template <int N>
+  SampledSpectrum<N> operator()(const SampledWavelengths<N>& lambda) const {
+    const float top = float(values_.size() - 1);
+    std::array<int, N> row;
+    std::array<float, N> t, a, b, inside;
+    for (int i = 0; i < N; ++i) {
+      const float x = lambda[i] - float(lambda_min_);
+      inside[i] = (x >= 0.f) & (x <= top) ? 1.f : 0.f;
+      const float xc = std::min(std::max(0.f, x), top);  // x where inside; NaN to 0
+      row[i] = std::min(int(xc), int(values_.size()) - 2);
+      t[i] = xc - float(row[i]);
+    }
+    for (int i = 0; i < N; ++i) a[i] = values_[row[i]], b[i] = values_[row[i] + 1];
+    SampledSpectrum<N> r;
+    for (int i = 0; i < N; ++i) r[i] = inside[i] * ((1.f - t[i]) * a[i] + t[i] * b[i]);
+    return r;
   }
   int lambda_min() const { return lambda_min_; }
   const std::vector<float>& values() const { return values_; }
