@@ -62,7 +62,7 @@ class DenselySampledSpectrum {
     std::array<float, N> t, a, b, inside;
     for (int i = 0; i < N; ++i) {
       const float x = lambda[i] - float(lambda_min_);
-      inside[i] = (x >= 0.f) & (x <= top) ? 1.f : 0.f;
+      inside[i] = ((x >= 0.f) & (x <= top)) ? 1.f : 0.f;
       const float xc = std::min(std::max(0.f, x), top);  // x where inside; NaN to 0
       row[i] = std::min(int(xc), int(values_.size()) - 2);
       t[i] = xc - float(row[i]);
