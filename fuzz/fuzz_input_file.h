@@ -6,17 +6,25 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
 
 namespace prism::fuzz {
 
-// A folder of this process's own, holding one file per call (overwritten).
+// A folder of this process's own, removed when the fuzzer exits.
+struct ScratchFolder {
+  std::filesystem::path path =
+      std::filesystem::temp_directory_path() / ("prism_fuzz_" + std::to_string(getpid()));
+  ScratchFolder() { std::filesystem::create_directories(path); }
+  ~ScratchFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path, ignored);
+  }
+};
+
+// The input as a file in that folder, one file per name (overwritten at each call).
 inline std::filesystem::path input_file(const uint8_t* data, size_t size, const std::string& name) {
-  static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / ("prism_fuzz_" + std::to_string(getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  const auto file = dir / name;
+  static const ScratchFolder folder;
+  const auto file = folder.path / name;
   std::ofstream(file, std::ios::binary | std::ios::trunc)
       .write(reinterpret_cast<const char*>(data), std::streamsize(size));
   return file;
