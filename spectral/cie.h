@@ -42,27 +42,22 @@ template <int N>
 Xyz to_xyz(const SampledSpectrum<N>& s, const SampledWavelengths<N>& lambda) {
   using Float4 = float __attribute__((vector_size(16)));
   const CieTables& t = cie();
-  const int last = int(t.xyz_rows.size()) - 1;
-  // Each lane's weight S(λ)/p(λ), row and fraction first, all lanes at once (SIMD): a lane outside
-  // the rows or terminated (pdf 0) weighs 0, whatever its S (a terminated lane's may be anything).
-  // (Written so that the loop vectorises on AVX2 too: no branches or selects of a quotient, the
-  // division done on every lane, by at least 1e-30.)
-  std::array<float, N> w, f;
-  std::array<int, N> row;
-  const float top = float(last);
+  // Each lane's row and fraction (locate_rows), then its weight S(λ)/p(λ), all lanes at once
+  // (SIMD): a lane outside the rows or terminated (pdf 0) weighs 0, whatever its S (a terminated
+  // lane's may be anything). (Written so that the loop vectorises on AVX2 too: no branches or
+  // selects of a quotient, the division done on every lane, by at least 1e-30.)
+  const RowPlaces<N> p = locate_rows(lambda, kLambdaMin, int(t.xyz_rows.size()));
+  std::array<float, N> w;
   for (int i = 0; i < N; ++i) {
-    const float u = lambda[i] - kLambdaMin, pdf = lambda.pdf()[i];
-    const bool keep = (u >= 0.f) & (u <= top) & (pdf > 0.f);
-    const float x = std::min(std::max(0.f, u), top);  // u where kept; NaN to 0
-    row[i] = std::min(int(x), last - 1);
-    f[i] = x - float(row[i]);
+    const float pdf = lambda.pdf()[i];
+    const bool keep = (p.inside[i] > 0.f) & (pdf > 0.f);
     w[i] = (keep ? s[i] : 0.f) / std::max(pdf, 1e-30f);
   }
   // Then x̄, ȳ, z̄ linear between the 1-nm rows, one 4-float row pair per lane.
   Float4 sum{0, 0, 0, 0};
   for (int i = 0; i < N; ++i) {
-    const auto a = std::bit_cast<Float4>(t.xyz_rows[row[i]]), b = std::bit_cast<Float4>(t.xyz_rows[row[i] + 1]);
-    sum += w[i] * ((1.f - f[i]) * a + f[i] * b);
+    const auto a = std::bit_cast<Float4>(t.xyz_rows[p.row[i]]), b = std::bit_cast<Float4>(t.xyz_rows[p.row[i] + 1]);
+    sum += w[i] * ((1.f - p.fraction[i]) * a + p.fraction[i] * b);
   }
   const float norm = 1.f / (N * t.y_integral);
   return {sum[0] * norm, sum[1] * norm, sum[2] * norm};

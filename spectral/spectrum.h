@@ -27,6 +27,28 @@ struct ConstantSpectrum {
   float operator()(float) const { return c; }
 };
 
+// Where each of a path's wavelengths falls on a table of 1-nm rows from λ = first (rows ≥ 2 of
+// them): the row below it, the fraction towards the next, and inside = 1 within the table's span,
+// 0 outside it (and for NaN). All lanes at once (SIMD): no branches.
+template <int N>
+struct RowPlaces {
+  std::array<int, N> row;
+  std::array<float, N> fraction, inside;
+};
+template <int N>
+RowPlaces<N> locate_rows(const SampledWavelengths<N>& lambda, float first, int rows) {
+  RowPlaces<N> p;
+  const float top = float(rows - 1);
+  for (int i = 0; i < N; ++i) {
+    const float x = lambda[i] - first;
+    p.inside[i] = ((x >= 0.f) & (x <= top)) ? 1.f : 0.f;
+    const float xc = std::min(std::max(0.f, x), top);  // x where inside; NaN to 0
+    p.row[i] = std::min(int(xc), rows - 2);
+    p.fraction[i] = xc - float(p.row[i]);
+  }
+  return p;
+}
+
 // Linear interpolation between samples; beyond the first / last sample the end value holds
 // (measured tables that stop short of 360 or 830 nm are extended flat, not dropped to 0).
 class TabulatedSpectrum {
@@ -53,23 +75,15 @@ class DenselySampledSpectrum {
     const float t = x - float(i);
     return (1.f - t) * values_[i] + t * values_[i + 1];
   }
-  // The same at all of a path's wavelengths: rows and fractions on all lanes at once (SIMD),
-  // then a pair of loads per lane (a constant environment's radiance, once per path).
+  // The same at all of a path's wavelengths (a constant environment's radiance, once per path):
+  // the lanes' rows found at once (locate_rows), then a pair of loads per lane.
   template <int N>
   SampledSpectrum<N> operator()(const SampledWavelengths<N>& lambda) const {
-    const float top = float(values_.size() - 1);
-    std::array<int, N> row;
-    std::array<float, N> t, a, b, inside;
-    for (int i = 0; i < N; ++i) {
-      const float x = lambda[i] - float(lambda_min_);
-      inside[i] = ((x >= 0.f) & (x <= top)) ? 1.f : 0.f;
-      const float xc = std::min(std::max(0.f, x), top);  // x where inside; NaN to 0
-      row[i] = std::min(int(xc), int(values_.size()) - 2);
-      t[i] = xc - float(row[i]);
-    }
-    for (int i = 0; i < N; ++i) a[i] = values_[row[i]], b[i] = values_[row[i] + 1];
+    const RowPlaces<N> p = locate_rows(lambda, float(lambda_min_), int(values_.size()));
+    std::array<float, N> a, b;
+    for (int i = 0; i < N; ++i) a[i] = values_[p.row[i]], b[i] = values_[p.row[i] + 1];
     SampledSpectrum<N> r;
-    for (int i = 0; i < N; ++i) r[i] = inside[i] * ((1.f - t[i]) * a[i] + t[i] * b[i]);
+    for (int i = 0; i < N; ++i) r[i] = p.inside[i] * ((1.f - p.fraction[i]) * a[i] + p.fraction[i] * b[i]);
     return r;
   }
   int lambda_min() const { return lambda_min_; }
