@@ -20,26 +20,6 @@ bool hittable(const Triangle& v) {
   return area > 0.f && std::isfinite(area);
 }
 
-// World-space box of a box under an affine transform, rounded outwards, and padded by a little
-// more than the rounding of a ray transformed into the instance's space, so that the world tree
-// never culls an instance that the ray, in object space, would hit.
-Bounds3f transform_bounds(const AffineTransform& m, const Bounds3f& b) {
-  Vec3d lo(kInfinity, kInfinity, kInfinity), hi(-kInfinity, -kInfinity, -kInfinity);
-  for (int corner = 0; corner < 8; ++corner) {
-    const Vec3d p = m.point(Vec3d(b.corner(corner)));
-    lo = min(lo, p), hi = max(hi, p);
-  }
-  const double magnitude =
-      std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)});
-  const double pad = magnitude * 0x1p-20;
-  Bounds3f out;
-  for (int a = 0; a < 3; ++a) {
-    out.lo[a] = next_float_down(float(lo[a] - pad));
-    out.hi[a] = next_float_up(float(hi[a] + pad));
-  }
-  return out;
-}
-
 // Which triangles lie on the boundary of the points' convex hull: every point on one side of the
 // triangle's plane or on it (within 10⁻¹² of the points' extent, this test's own rounding), so that
 // a ray leaving the triangle to the other side cannot meet any of them; and the points' centroid,

@@ -1,6 +1,9 @@
 #include "base/transform.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "base/math.h"
 
 namespace prism {
 
@@ -123,6 +126,23 @@ Transform AffineTransform::inverse() const {
     }
   for (int i = 0; i < 3; ++i) r.m[i][3] = -(r.m[i][0] * a(0, 3) + r.m[i][1] * a(1, 3) + r.m[i][2] * a(2, 3));
   return r;
+}
+
+Bounds3f transform_bounds(const AffineTransform& m, const Bounds3f& b) {
+  Vec3d lo(kInfinity, kInfinity, kInfinity), hi(-kInfinity, -kInfinity, -kInfinity);
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3d p = m.point(Vec3d(b.corner(corner)));
+    lo = min(lo, p), hi = max(hi, p);
+  }
+  const double magnitude =
+      std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)});
+  const double pad = magnitude * 0x1p-20;
+  Bounds3f out;
+  for (int a = 0; a < 3; ++a) {
+    out.lo[a] = next_float_down(float(lo[a] - pad));
+    out.hi[a] = next_float_up(float(hi[a] + pad));
+  }
+  return out;
 }
 
 }  // namespace prism

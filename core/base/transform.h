@@ -4,6 +4,7 @@
 
 #include <array>
 
+#include "base/bounds.h"
 #include "base/vec.h"
 
 namespace prism {
@@ -68,5 +69,11 @@ inline Vec3d AffineTransform::vector(const Vec3d& v) const {
 Transform inverse(const Transform& t);
 Transform transpose(const Transform& t);
 double determinant3x3(const Transform& t);  // of the linear part: < 0 means the transform mirrors
+
+// World-space box of a box under an affine transform, rounded outwards, and padded by a little
+// more than the rounding of a ray transformed into the instance's space: the accel's world tree
+// never culls an instance that the ray, in object space, would hit, and every point of the box
+// placed by point_rounded lies inside.
+Bounds3f transform_bounds(const AffineTransform& m, const Bounds3f& b);
 
 }  // namespace prism
