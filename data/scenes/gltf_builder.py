@@ -86,9 +86,13 @@ def uv_sphere(centre, radius, segments):
     pos, nrm, idx = [], [], []
     for i in range(rings + 1):
         th = math.pi * i / rings
+        # The poles' vertices and the seam's two columns at the very same positions (sin π and
+        # sin 2π are not 0 in floating point): the sphere is closed (accel/closed_surface.h).
+        sin_th = 0.0 if i in (0, rings) else math.sin(th)
+        cos_th = 1.0 if i == 0 else -1.0 if i == rings else math.cos(th)
         for j in range(segments + 1):
-            ph = 2.0 * math.pi * j / segments
-            n = (math.sin(th) * math.cos(ph), math.cos(th), math.sin(th) * math.sin(ph))
+            ph = 2.0 * math.pi * (j % segments) / segments
+            n = (sin_th * math.cos(ph), cos_th, sin_th * math.sin(ph))
             pos.append(add(centre, scale(n, radius)))
             nrm.append(n)
     at = lambda i, j: i * (segments + 1) + j
