@@ -14,6 +14,10 @@ struct Bounds3f {
   void extend(const Bounds3f& b) { lo = min(lo, b.lo), hi = max(hi, b.hi); }
   Vec3f diagonal() const { return hi - lo; }
   Vec3f centroid() const { return (lo + hi) * 0.5f; }
+  // Whether p lies in the box, its faces included (never for an infinite or NaN coordinate).
+  bool inside(const Vec3f& p) const {
+    return lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y && lo.z <= p.z && p.z <= hi.z;
+  }
   // Corner c (0 to 7): bit 0 picks hi's x, bit 1 its y, bit 2 its z.
   Vec3f corner(int c) const { return {(c & 1 ? hi : lo).x, (c & 2 ? hi : lo).y, (c & 4 ? hi : lo).z}; }
 };

@@ -5,6 +5,7 @@
 #include <new>
 #include <tuple>
 
+#include "accel/closed_surface.h"
 #include "accel/triangle.h"
 #include "base/error.h"
 #include "base/first_equal.h"
@@ -68,6 +69,7 @@ World::World(const Scene& scene, const AccelOptions& accel)
   for (const Instance& inst : scene.instances)
     instance_normals_.push_back({inst.to_world.determinant() < 0, cofactor(inst.to_world)});
   attribute_mesh_ = attribute_meshes(scene.meshes);
+  add_enclosures();
   add_lights();
   // The tables a render reads, loaded here rather than at the first hit inside the timed render.
   RgbToSpectrumTable::srgb();
@@ -88,6 +90,28 @@ std::array<Vec3f, 3> World::world_vertices(const Instance& inst, uint32_t prim) 
   std::array<Vec3f, 3> v;
   for (int k = 0; k < 3; ++k) v[k] = inst.to_world.point_rounded(m.positions[m.indices[3 * prim + k]]);
   return v;
+}
+
+void World::add_enclosures() {
+  // Only meshes light passes through can have a path on their inside or a light sample into them;
+  // the check is left out for the others (it sorts the mesh's vertices and edges).
+  std::vector<float> side(scene_.meshes.size(), 0.f);
+  std::vector<Bounds3f> bounds(scene_.meshes.size());
+  bool any = false;
+  for (size_t m = 0; m < scene_.meshes.size(); ++m) {
+    const Mesh& mesh = scene_.meshes[m];
+    const Material& material = scene_.materials[mesh.material];
+    if (!material.transmits() || material.alpha_mode != AlphaMode::opaque) continue;
+    side[m] = float(enclosed_side(mesh.positions, mesh.indices));
+    if (side[m] == 0) continue;
+    for (const Vec3f& p : mesh.positions) bounds[m].extend(p);
+    any = true;
+  }
+  if (!any) return;
+  for (const Instance& inst : scene_.instances)
+    enclosures_.push_back(side[inst.mesh] == 0 ? Enclosure{}
+                                               : Enclosure{transform_bounds(inst.to_world, bounds[inst.mesh]),
+                                                           side[inst.mesh]});
 }
 
 void World::add_lights() {

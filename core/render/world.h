@@ -35,6 +35,16 @@ class World {
   // product of 1 − alpha of the BLEND surfaces it crosses (MASK cut-outs pass it whole). The
   // expectation of `occluded`'s stochastic answer, for shadow rays (Cycles' transparent shadows).
   float transmittance(const Ray& ray) const;
+  // Whether a ray leaving si surely meets si's own surface again: the mesh is closed and light
+  // passes through it (enclosed_side, accel/closed_surface.h), the ray leaves into the volume it
+  // encloses (by more than the margin SurfaceInteraction::skip_towards keeps), and it ends beyond
+  // the instance's bounds, so it leaves that volume on the way (infinitely far: always). A shadow
+  // ray into a closed translucent object, towards a light outside it, is blocked without being traced.
+  bool meets_own_surface(const SurfaceInteraction& si, const Ray& ray) const {
+    if (enclosures_.empty()) return false;
+    const Enclosure& e = enclosures_[si.instance];
+    return dot(ray.d, si.n) * e.side > 1e-4f && !e.bounds.inside(ray.o + ray.d * ray.tmax);
+  }
 
   const Scene& scene() const { return scene_; }
   const SceneFeatures& features() const { return features_; }
@@ -64,6 +74,7 @@ class World {
   void surface_point(const Ray& ray, const AccelHit& hit, SurfaceInteraction& si) const;
   void shade(SurfaceInteraction& si, const AccelHit& hit) const;
   bool cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_blend) const;
+  void add_enclosures();
   void add_lights();
 
   const Scene& scene_;
@@ -78,6 +89,14 @@ class World {
     std::array<Vec3f, 3> cofactor;
   };
   std::vector<InstanceNormals> instance_normals_;
+  // Per instance, for meets_own_surface: the side of its triangles' normals on which its mesh's
+  // volume lies (−1 or +1; 0 for a mesh that is not closed, or that light does not pass) and its
+  // world-space bounds. Empty where no instance has such a mesh.
+  struct Enclosure {
+    Bounds3f bounds;
+    float side = 0;
+  };
+  std::vector<Enclosure> enclosures_;
   // Per mesh, the mesh a hit on it reads indices and vertex attributes from: the first with the very
   // same ones. glTF primitives that share accessors but not materials load as copies (the 98 spheres
   // of MetalRoughSpheres, 19 MB); shading them from one copy keeps what a hit reads in cache.
