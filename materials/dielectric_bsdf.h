@@ -190,11 +190,8 @@ class DielectricBsdf {
     if (!compensate_) return single_scattering(wo, wi, h, t, F);
     if (thin_ && transmission_ < 1 && h.reflection) return partly_clear_reflection(wo, wi, t, F);
     if constexpr (Extensions)
-      if (lanes_ && lanes_->eta) {  // each lane's reflectance follows its own index: so does its E
-        SampledSpectrum<N> f = single_scattering(wo, wi, h, t, F);
-        for (int i = 0; i < N; ++i) f[i] /= single_scattering_albedo(wo.z, (*lanes_->eta)[i]);
-        return f;
-      }
+      if (lanes_ && lanes_->eta)  // each lane's reflectance follows its own index: so does its E
+        return single_scattering(wo, wi, h, t, F) / lanes_outgoing_albedo(wo.z);
     return single_scattering(wo, wi, h, t, F) * outgoing_compensation(wo.z);
   }
 
@@ -273,6 +270,24 @@ class DielectricBsdf {
     if (!(mu == outgoing_.mu)) outgoing_ = {mu, 1 / single_scattering_albedo(mu, eta_)};
     return outgoing_.inverse_e;
   }
+  // single_scattering_albedo(μ_o) for each lane's own index, kept for the last μ_o asked as the one
+  // above: the tables read once at each η node the lanes span, for all lanes at once.
+  SampledSpectrum<N> lanes_outgoing_albedo(float mu) const {
+    if (!(mu == lanes_outgoing_.mu)) {
+      lanes_outgoing_.mu = mu;
+      const SpecularAlbedo& table = SpecularAlbedo::table();
+      if (thin_) {
+        lanes_outgoing_.e = SampledSpectrum<N>(table.white(std::abs(mu), roughness_));
+      } else {
+        std::array<float, N> eta;  // from wo's side
+        for (int i = 0; i < N; ++i) eta[i] = mu > 0 ? (*lanes_->eta)[i] : 1 / (*lanes_->eta)[i];
+        const std::array<float, N> e = table.interface(SpecularAlbedo::direction(std::abs(mu), roughness_),
+                                                       SpecularAlbedo::Lanes<N>(eta));
+        for (int i = 0; i < N; ++i) lanes_outgoing_.e[i] = e[i];
+      }
+    }
+    return lanes_outgoing_.e;
+  }
 
   std::optional<BsdfSample<N>> sample_smooth(const Vec3f& wo, float uc) const {
     const SampledSpectrum<N> F = fresnel(cos_theta(wo)), Rs = reflected(F);
@@ -325,6 +340,11 @@ class DielectricBsdf {
     float inverse_e = 0;
   };
   mutable Outgoing outgoing_;  // a cache: safe because a Bsdf is built and used within one thread
+  struct LanesOutgoing {
+    float mu = std::numeric_limits<float>::quiet_NaN();  // none yet
+    SampledSpectrum<N> e;
+  };
+  [[no_unique_address]] mutable std::conditional_t<Extensions, LanesOutgoing, Absent> lanes_outgoing_;  // the same
 };
 
 }  // namespace prism

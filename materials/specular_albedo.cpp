@@ -73,6 +73,11 @@ float SpecularAlbedo::interface(float mu, const Roughness& r, float eta) const {
   return (1 - h.t) * specular[h.i].rt.at(p) + h.t * specular[h.i + 1].rt.at(p);
 }
 
+void SpecularAlbedo::interface(const Direction& d, int first, int last, std::span<float> out) const {
+  const Point p = point(d);
+  for (int h = first; h <= last; ++h) out[h - first] = specular[h].rt.at(p);
+}
+
 float SpecularAlbedo::white(const Direction& d) const { return d.smooth ? 1.f : specular_white.at(point(d)); }
 
 float SpecularAlbedo::white_average(const Roughness& r) const { return specular_white.average({r.a, r.ta}); }

@@ -126,6 +126,18 @@ class SpecularAlbedo {
     return lanes.interpolate(at_nodes);
   }
   float interface(float mu, const Roughness& r, float eta) const;
+  // interface() at one direction for each lane's index, as the lanes' E above.
+  template <int N>
+  std::array<float, N> interface(const Direction& d, const Lanes<N>& lanes) const {
+    if (d.smooth) {
+      std::array<float, N> one;
+      one.fill(1.f);
+      return one;
+    }
+    std::array<float, albedo_tables::kEta> at_nodes;
+    interface(d, lanes.first, lanes.last, at_nodes);
+    return lanes.interpolate(at_nodes);
+  }
   float white(const Direction& d) const;
   float white(float mu, const Roughness& r) const;
   float white_average(const Roughness& r) const;
@@ -135,6 +147,7 @@ class SpecularAlbedo {
   // E and E_avg at the η nodes first … last (into out[0 …]), for the lanes' interpolation.
   void E(const Direction& d, int first, int last, bool compensated, std::span<float> out) const;
   void average(const Roughness& r, int first, int last, bool compensated, std::span<float> out) const;
+  void interface(const Direction& d, int first, int last, std::span<float> out) const;
 };
 
 }  // namespace prism
