@@ -43,7 +43,8 @@ class World {
   bool meets_own_surface(const SurfaceInteraction& si, const Ray& ray) const {
     if (enclosures_.empty()) return false;
     const Enclosure& e = enclosures_[si.instance];
-    return dot(ray.d, si.n) * e.side > 1e-4f && !e.bounds.inside(ray.o + ray.d * ray.tmax);
+    // (Side 0 answered before the ray is read: it is mostly the light sample just made.)
+    return e.side != 0 && dot(ray.d, si.n) * e.side > 1e-4f && !e.bounds.inside(ray.o + ray.d * ray.tmax);
   }
 
   const Scene& scene() const { return scene_; }
