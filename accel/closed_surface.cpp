@@ -47,6 +47,7 @@ struct Parts {
 
 int enclosed_side(std::span<const Vec3f> positions, std::span<const uint32_t> indices) {
   const size_t triangles = indices.size() / 3;
+  if (triangles > kClosedCheckTriangles) return 0;
   const std::vector<uint32_t> id = position_ids(positions);
   // Each edge of each triangle, its ends in increasing order and whether the triangle crosses it
   // that way.

@@ -4,6 +4,7 @@
 // leaves the mesh's bounds (a shadow ray from inside a closed object to a light outside it is
 // blocked without being traced; World::meets_own_surface).
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -19,6 +20,9 @@ namespace prism {
 // - every connected part encloses a volume (a sheet's two faces back to back enclose none), and
 //   all parts have their normals on the same side of it.
 // Triangles with two vertices at one position are left out: their edges cancel each other.
+// Meshes of more than kClosedCheckTriangles triangles are not checked (0): the check sorts their
+// edges, about 75 bytes of memory a triangle while it runs.
+inline constexpr size_t kClosedCheckTriangles = size_t(1) << 20;
 int enclosed_side(std::span<const Vec3f> positions, std::span<const uint32_t> indices);
 
 }  // namespace prism

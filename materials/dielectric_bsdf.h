@@ -344,7 +344,7 @@ class DielectricBsdf {
     float mu = std::numeric_limits<float>::quiet_NaN();  // none yet
     SampledSpectrum<N> e;
   };
-  [[no_unique_address]] mutable std::conditional_t<Extensions, LanesOutgoing, Absent> lanes_outgoing_;  // the same
+  [[no_unique_address]] mutable std::conditional_t<Extensions, LanesOutgoing, Absent> lanes_outgoing_;  // a cache too
 };
 
 }  // namespace prism
