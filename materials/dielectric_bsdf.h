@@ -247,12 +247,18 @@ class DielectricBsdf {
     const SpecularAlbedo& table = SpecularAlbedo::table();
     const float mu = std::abs(wo.z), sheet = transmission_ / table.white(mu, roughness_);
     const float lobe = t.D * t.G / std::abs(4 * wi.z * wo.z);
+    // The one interface's albedo: once for the index every lane follows, else each lane's for its
+    // own, the tables read once at each η node the lanes span.
+    const SampledSpectrum<N> interface = [&] {
+      if constexpr (Extensions)
+        if (lanes_ && lanes_->eta)
+          return SampledSpectrum<N>(table.interface(SpecularAlbedo::direction(mu, roughness_),
+                                                    SpecularAlbedo::Lanes<N>(lanes_->eta->lanes())));
+      return SampledSpectrum<N>(table.interface(mu, roughness_, eta_));
+    }();
     SampledSpectrum<N> f;
     for (int i = 0; i < N; ++i) {
-      float eta = eta_;
-      if constexpr (Extensions)
-        if (lanes_ && lanes_->eta) eta = (*lanes_->eta)[i];
-      const float opaque = (1 - transmission_) / table.interface(mu, roughness_, eta);
+      const float opaque = (1 - transmission_) / interface[i];
       f[i] = lobe * (opaque * F[i] + sheet * (F[i] + sheet_excess(F[i])));
     }
     return f;
@@ -281,9 +287,8 @@ class DielectricBsdf {
       } else {
         std::array<float, N> eta;  // from wo's side
         for (int i = 0; i < N; ++i) eta[i] = mu > 0 ? (*lanes_->eta)[i] : 1 / (*lanes_->eta)[i];
-        const std::array<float, N> e = table.interface(SpecularAlbedo::direction(std::abs(mu), roughness_),
-                                                       SpecularAlbedo::Lanes<N>(eta));
-        for (int i = 0; i < N; ++i) lanes_outgoing_.e[i] = e[i];
+        lanes_outgoing_.e = SampledSpectrum<N>(
+            table.interface(SpecularAlbedo::direction(std::abs(mu), roughness_), SpecularAlbedo::Lanes<N>(eta)));
       }
     }
     return lanes_outgoing_.e;

@@ -282,16 +282,11 @@ class PbrBsdf {
     SpecularAlbedo::Lanes<N> eta;
     SampledSpectrum<N> excess, e_avg;
     LaneCoupling(const Extras& extras, float specular, const SpecularAlbedo::Roughness& roughness, bool compensated)
-        : eta(lane_array(*extras.lane_etas)), excess(extras.lane_excess.value_or(SampledSpectrum<N>(0.f))) {
+        : eta(extras.lane_etas->lanes()), excess(extras.lane_excess.value_or(SampledSpectrum<N>(0.f))) {
       const SpecularAlbedo& table = SpecularAlbedo::table();
       const float white_average = extras.lane_excess ? table.white_average(roughness) : 0.f;
       const std::array<float, N> average = table.average(roughness, eta, compensated);
       for (int i = 0; i < N; ++i) e_avg[i] = specular * (average[i] + excess[i] * white_average);
-    }
-    static std::array<float, N> lane_array(const SampledSpectrum<N>& s) {
-      std::array<float, N> a;
-      for (int i = 0; i < N; ++i) a[i] = s[i];
-      return a;
     }
   };
   struct Parts {

@@ -23,6 +23,7 @@ class SampledSpectrum {
 
   constexpr float operator[](int i) const { return v_[i]; }
   constexpr float& operator[](int i) { return v_[i]; }
+  constexpr const std::array<float, N>& lanes() const { return v_; }
 
 #define PRISM_LANEWISE(op)                                                \
   constexpr SampledSpectrum& operator op##=(const SampledSpectrum& b) {   \
