@@ -134,9 +134,7 @@ struct RgbIlluminantSpectrum {
   float operator()(float lambda) const;
   template <int N>
   SampledSpectrum<N> operator()(const SampledWavelengths<N>& lambda) const {
-    SampledSpectrum<N> r = shape(lambda);
-    for (int i = 0; i < N; ++i) r[i] *= (*illuminant)(lambda[i]);
-    return r;
+    return shape(lambda) * (*illuminant)(lambda);
   }
   RgbUnboundedSpectrum shape;
   const DenselySampledSpectrum* illuminant;  // D65 with luminance Y = 1
