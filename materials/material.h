@@ -49,6 +49,8 @@ struct SurfacePoint {
   // The material's colours upsampled once (World), not at every hit. Null: upsampled from the
   // inputs here.
   const ConstantSpectra* spectra = nullptr;
+
+  bool operator==(const SurfacePoint&) const = default;
 };
 
 // A PbrMaterial's parameters at one surface point: factor × texture × vertex colour. The
@@ -66,6 +68,8 @@ struct SurfaceInputs {
   float diffuse_transmission = 0;
   Rgb diffuse_transmission_color{1, 1, 1};
   float anisotropy = 0;  // KHR_materials_anisotropy's strength × texture B
+
+  bool operator==(const SurfaceInputs&) const = default;
 };
 
 // The KHR material extensions' layers of a PbrMaterial, each a factor with its textures.
@@ -251,17 +255,12 @@ MetalIndex<N> metal_nk_from_reflectance(const SampledSpectrum<N>& reflectance) {
   return m;
 }
 
-// The BSDF of material m for the path's wavelengths. `front` is the dielectric on the front
-// (normal) side of the surface, or nullptr for vacuum. Where the index ratio varies with λ, every
-// lane refracts at the hero's (lane 0's) index, so only lane 0 is right: the path tracer takes
-// such a material's lanes one by one (DispersiveBsdf), the bidirectional integrators keep the
-// hero alone (make_hero_bsdf).
+// make_bsdf (below) of a PbrMaterial, from its inputs at the point, p = material.inputs(at): of
+// `at` itself it reads all but the texture coordinates, which are for inputs() alone (LastBsdf
+// relies on it).
 template <int N>
-Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavelengths<N>& lambda,
-                  const Dielectric* front) {
-  if (const auto* d = std::get_if<DiffuseMaterial>(&m.kind)) return DiffuseBsdf<N>(sample(d->reflectance, lambda));
-  const PbrMaterial& material = std::get<PbrMaterial>(m.kind);
-  const SurfaceInputs p = material.inputs(at);
+Bsdf<N> make_bsdf(const PbrMaterial& material, const SurfaceInputs& p, const SurfacePoint& at,
+                  const SampledWavelengths<N>& lambda, const Dielectric* front) {
   const float alpha = sqr(p.roughness);
   // Local x is the direction of anisotropy (the shading frame follows it): α_x = mix(α, 1, s²).
   const TrowbridgeReitz distribution(p.anisotropy > 0 ? lerp(sqr(p.anisotropy), alpha, 1.f) : alpha, alpha);
@@ -358,6 +357,18 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
   // Built where it is kept, the base and its lobes inside it (not copied there).
   return Bsdf<N>(std::in_place_type<LayeredBsdf<N>>, coat, sheen, p.metallic, metal, dielectric, p.transmission, color,
                  distribution.alpha(), eta, p.specular, dielectric_ms, &extras);
+}
+// The BSDF of material m for the path's wavelengths. `front` is the dielectric on the front
+// (normal) side of the surface, or nullptr for vacuum. Where the index ratio varies with λ, every
+// lane refracts at the hero's (lane 0's) index, so only lane 0 is right: the path tracer takes
+// such a material's lanes one by one (DispersiveBsdf), the bidirectional integrators keep the
+// hero alone (make_hero_bsdf).
+template <int N>
+Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavelengths<N>& lambda,
+                  const Dielectric* front) {
+  if (const auto* d = std::get_if<DiffuseMaterial>(&m.kind)) return DiffuseBsdf<N>(sample(d->reflectance, lambda));
+  const PbrMaterial& material = std::get<PbrMaterial>(m.kind);
+  return make_bsdf(material, material.inputs(at), at, lambda, front);
 }
 
 // make_bsdf for integrators that follow only the hero wavelength past a λ-dependent index ratio:

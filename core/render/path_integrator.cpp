@@ -3,6 +3,7 @@
 #include <new>
 
 #include "materials/dispersive_bsdf.h"
+#include "materials/last_bsdf.h"
 #include "render/direct_light.h"
 #include "render/medium_stack.h"
 #include "render/russian_roulette.h"
@@ -68,6 +69,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
   BeerLambert<N> absorption;
   const PowerLightSampler& light_sampler = world.light_sampler();
   const PathSky<N> sky(world.environment(), lambda);
+  LastBsdf<N> last_bsdf;
 
   // `vertex` counts every surface met, `depth` those the path scattered at (not passed through):
   // each vertex has its own block of sampler dimensions, the depth limit counts bounces.
@@ -158,7 +160,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
       if constexpr (Dispersion && N > 1)
         if (disperses(material, front) && companions_alive(path_pdfs))
           return scatter(DispersiveBsdf<N>(material, si->at, lambda, front, path_pdfs));
-      return scatter(make_bsdf(material, si->at, lambda, front));
+      return scatter(last_bsdf.of(material, si->at, lambda, front));
     }();
     if (passes) {
       path_pdfs = path_pdfs_before;

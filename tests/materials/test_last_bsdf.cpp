@@ -1,0 +1,106 @@
+// LastBsdf: a path's next BSDF is the one make_bsdf would make there, whichever of make_bsdf's
+// inputs changed since the last point (material, texture, vertex colour, coat normal, front medium).
+
+#include <catch2/catch.hpp>
+#include <memory>
+
+#include "materials/last_bsdf.h"
+
+using namespace prism;
+
+namespace {
+
+constexpr int N = 8;
+
+SampledWavelengths<N> wavelengths() { return SampledWavelengths<N>::sample({0.31f, 0.77f}); }
+
+// A layered material (clear coat, sheen, film, specular colour, diffuse transmission) over a
+// half-metal base.
+PbrMaterial layered() {
+  PbrMaterial p;
+  p.base_color = {0.7f, 0.4f, 0.2f};
+  p.metallic = 0.5f, p.roughness = 0.4f;
+  p.specular_color = {1.2f, 1.f, 0.6f};
+  p.clearcoat.emplace();
+  p.clearcoat->factor = 0.8f, p.clearcoat->roughness = 0.2f;
+  p.sheen.emplace();
+  p.sheen->color = {0.5f, 0.5f, 1.f}, p.sheen->roughness = 0.5f;
+  p.iridescence.emplace();
+  p.iridescence->factor = 0.5f, p.iridescence->ior = 1.6f, p.iridescence->thickness_max = 250;
+  p.diffuse_transmission.emplace();
+  p.diffuse_transmission->factor = 0.3f;
+  return p;
+}
+
+// A 2×1 base-colour texture: red on the left half, blue on the right (nearest).
+Texture red_blue() {
+  Texture t;
+  t.image = std::make_shared<Image>(2, 1, std::vector<uint8_t>{255, 0, 0, 255, 0, 0, 255, 255});
+  t.nearest = true;
+  return t;
+}
+
+SurfacePoint point(float u) {
+  SurfacePoint at;
+  at.uv[0] = {u, 0.5f};
+  return at;
+}
+
+// Whether two BSDFs have the same f and pdf, bit for bit, over a few pairs of directions.
+bool same(const Bsdf<N>& a, const Bsdf<N>& b) {
+  const Vec3f wos[] = {normalize(Vec3f(0.3f, 0.1f, 0.9f)), normalize(Vec3f(-0.6f, 0.2f, 0.3f))};
+  const Vec3f wis[] = {normalize(Vec3f(-0.2f, 0.4f, 0.8f)), normalize(Vec3f(0.5f, -0.5f, 0.2f)),
+                       normalize(Vec3f(0.1f, 0.3f, -0.7f))};
+  for (const Vec3f& wo : wos)
+    for (const Vec3f& wi : wis) {
+      const BsdfEval<N> x = bsdf_eval(a, wo, wi), y = bsdf_eval(b, wo, wi);
+      if (x.pdf != y.pdf) return false;
+      for (int i = 0; i < N; ++i)
+        if (x.f[i] != y.f[i]) return false;
+    }
+  return true;
+}
+
+// After `before`, LastBsdf gives at `after` what make_bsdf makes there, and that differs from the
+// BSDF at `before` (or the check could not tell a stale BSDF from a fresh one).
+void check_follows(const Material& m0, const SurfacePoint& before, const Dielectric* front0, const Material& m1,
+                   const SurfacePoint& after, const Dielectric* front1) {
+  const SampledWavelengths<N> lambda = wavelengths();
+  LastBsdf<N> last;
+  const Bsdf<N> old = make_bsdf(m0, before, lambda, front0), fresh = make_bsdf(m1, after, lambda, front1);
+  REQUIRE_FALSE(same(old, fresh));
+  CHECK(same(last.of(m0, before, lambda, front0), old));
+  CHECK(same(last.of(m1, after, lambda, front1), fresh));
+}
+
+}  // namespace
+
+TEST_CASE("LastBsdf makes the BSDF again when any of make_bsdf's inputs changes") {
+  const Material plain{"layered", layered(), {}, false};
+  PbrMaterial textured_pbr = layered();
+  textured_pbr.base_color = {1, 1, 1};
+  textured_pbr.base_color_texture = red_blue();
+  const Material textured{"textured", textured_pbr, {}, false};
+  PbrMaterial other_pbr = layered();
+  other_pbr.dielectric = Dielectric(ConstantIor{1.8f});  // not among the inputs at a point: only the material tells
+  const Material other{"other", other_pbr, {}, false};
+  const Dielectric water(ConstantIor{1.33f});
+
+  SECTION("the texture at the new point") { check_follows(textured, point(0.25f), nullptr, textured, point(0.75f), nullptr); }
+  SECTION("the vertex colour") {
+    SurfacePoint tinted = point(0.25f);
+    tinted.vertex_color = {0.5f, 1, 1, 1};
+    check_follows(plain, point(0.25f), nullptr, plain, tinted, nullptr);
+  }
+  SECTION("the coat's normal") {
+    SurfacePoint tilted = point(0.25f);
+    tilted.coat_normal = normalize(Vec3f(0.3f, 0, 1));
+    check_follows(plain, point(0.25f), nullptr, plain, tilted, nullptr);
+  }
+  SECTION("the front medium") { check_follows(plain, point(0.25f), nullptr, plain, point(0.25f), &water); }
+  SECTION("the material") { check_follows(plain, point(0.25f), nullptr, other, point(0.25f), nullptr); }
+  SECTION("a diffuse material after a layered one") {
+    const Material diffuse{"diffuse", DiffuseMaterial{ConstantSpectrum{0.5f}}, {}, false};
+    check_follows(plain, point(0.25f), nullptr, diffuse, point(0.25f), nullptr);
+  }
+}
