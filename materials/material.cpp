@@ -111,7 +111,7 @@ Vec2f PbrMaterial::anisotropy_direction(const SurfacePoint& at) const {
     const float len = std::sqrt(texel.x * texel.x + texel.y * texel.y);
     if (len > 0) d = Vec2f(texel.x / len, texel.y / len);
   }
-  const float c = std::cos(anisotropy_rotation), s = std::sin(anisotropy_rotation);
+  const float c = anisotropy_rotation.x, s = anisotropy_rotation.y;
   return {c * d.x - s * d.y, s * d.x + c * d.y};
 }
 

@@ -117,10 +117,11 @@ struct PbrMaterial {
   std::optional<Iridescence> iridescence;
   std::optional<DiffuseTransmission> diffuse_transmission;
   // KHR_materials_anisotropy: the roughness along the direction of anisotropy rises to
-  // mix(α, 1, strength²) (α across it). The direction is the mesh tangent turned by `rotation`
-  // (radians, towards the bitangent), or the texture's RG direction in tangent space turned so;
-  // the texture's B multiplies the strength. See anisotropy_direction() and World::interaction.
-  float anisotropy_strength = 0, anisotropy_rotation = 0;
+  // mix(α, 1, strength²) (α across it). The direction is the mesh tangent turned by the rotation
+  // (towards the bitangent), or the texture's RG direction in tangent space turned so; the
+  // texture's B multiplies the strength. See anisotropy_direction() and World::interaction.
+  float anisotropy_strength = 0;
+  Vec2f anisotropy_rotation{1, 0};  // (cos, sin) of the extension's anisotropyRotation: found once, not per hit
   std::optional<Texture> anisotropy_texture;  // linear; RG direction in [−1, 1], B strength
 
   SurfaceInputs inputs(const SurfacePoint& at) const;

@@ -210,7 +210,8 @@ PbrMaterial GltfLoader::surface(const tinygltf::Material& m, Rgb base, const std
     if (d.factor > 0) p.diffuse_transmission = std::move(d);
   }
   p.anisotropy_strength = float(number("KHR_materials_anisotropy", "anisotropyStrength", 0, 0, 1));
-  p.anisotropy_rotation = float(number("KHR_materials_anisotropy", "anisotropyRotation", 0, -1e6, 1e6));
+  const float rotation = float(number("KHR_materials_anisotropy", "anisotropyRotation", 0, -1e6, 1e6));
+  p.anisotropy_rotation = {std::cos(rotation), std::sin(rotation)};
 
   IorModel ior_model = ConstantIor{float(number("KHR_materials_ior", "ior", 1.5, 1, 1e3))};
   if (const std::string glass = prism_extra(m, "glass"); !glass.empty()) {

@@ -585,7 +585,7 @@ TEST_CASE("anisotropic GGX: reciprocal, isotropic at strength 0, and conserving 
     }
     // Strength 0 is the isotropic lobe bit for bit.
     PbrMaterial plain = PbrMaterial::metal_of(Rgb{0.9f, 0.6f, 0.3f}, roughness), zero = plain;
-    zero.anisotropy_strength = 0, zero.anisotropy_rotation = 1;
+    zero.anisotropy_strength = 0, zero.anisotropy_rotation = {std::cos(1.f), std::sin(1.f)};
     const Bsdf<N> p = bsdf_of(plain), z = bsdf_of(zero);
     for (int i = 0; i < 100; ++i) {
       const Vec3f wo = sample_uniform_sphere({rng.uniform(), rng.uniform()}),

@@ -357,7 +357,7 @@ TEST_CASE("anisotropy 0 renders the isotropic material bit for bit; a strong one
   const auto render = [](float strength, float rotation) {
     PbrMaterial p = PbrMaterial::metal_of(Rgb{0.9f, 0.9f, 0.9f}, 0.4f);
     p.anisotropy_strength = strength;
-    p.anisotropy_rotation = rotation;
+    p.anisotropy_rotation = {std::cos(rotation), std::sin(rotation)};
     Scene scene;
     scene.materials.push_back(Material{.name = "brushed", .kind = p});
     Mesh quad = test::make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 0);
