@@ -200,7 +200,7 @@ class PbrBsdf {
       if (!extras_ || !extras_->lanes) return SampledSpectrum<N>(scalar_coupling(e_o, wi));
       const LaneCoupling& lanes = *extras_->lanes;
       const SpecularAlbedo& table = SpecularAlbedo::table();
-      const bool film = lanes.excess.max() > 0;
+      const bool film = lanes.film;
       // μ_o and μ_i found on the tables once, for all the lanes' indices; what μ_o gives, once per wo.
       const Outgoing& o = lanes_outgoing(wo.z, film);
       const SpecularAlbedo::Direction in = SpecularAlbedo::direction(std::abs(wi.z), roughness_);
@@ -277,12 +277,15 @@ class PbrBsdf {
   }
 
   // The lanes' own coupling: each lane's index placed on the albedo tables once, its film excess
-  // x_λ, and its E_avg (see the header). Built where it is kept, as the lobes are.
+  // x_λ (film: some lane's is > 0), and its E_avg (see the header). Built where it is kept, as the lobes are.
   struct LaneCoupling {
     SpecularAlbedo::Lanes<N> eta;
     SampledSpectrum<N> excess, e_avg;
+    bool film;
     LaneCoupling(const Extras& extras, float specular, const SpecularAlbedo::Roughness& roughness, bool compensated)
-        : eta(extras.lane_etas->lanes()), excess(extras.lane_excess.value_or(SampledSpectrum<N>(0.f))) {
+        : eta(extras.lane_etas->lanes()),
+          excess(extras.lane_excess.value_or(SampledSpectrum<N>(0.f))),
+          film(excess.max() > 0) {
       const SpecularAlbedo& table = SpecularAlbedo::table();
       const float white_average = extras.lane_excess ? table.white_average(roughness) : 0.f;
       const std::array<float, N> average = table.average(roughness, eta, compensated);
