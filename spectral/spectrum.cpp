@@ -51,6 +51,14 @@ RgbIlluminantSpectrum::RgbIlluminantSpectrum(Rgb rgb) : shape(rgb), illuminant(&
 
 float RgbIlluminantSpectrum::operator()(float lambda) const { return shape(lambda) * (*illuminant)(lambda); }
 
+template <int N>
+SampledSpectrum<N> RgbIlluminantSpectrum::operator()(const SampledWavelengths<N>& lambda) const {
+  return shape(lambda) * (*illuminant)(lambda);
+}
+template SampledSpectrum<1> RgbIlluminantSpectrum::operator()(const SampledWavelengths<1>&) const;
+template SampledSpectrum<4> RgbIlluminantSpectrum::operator()(const SampledWavelengths<4>&) const;
+template SampledSpectrum<8> RgbIlluminantSpectrum::operator()(const SampledWavelengths<8>&) const;
+
 RgbAbsorptionSpectrum::RgbAbsorptionSpectrum(Rgb t, float distance)
     : transmittance(t), inv_distance(1 / std::max(distance, 1e-30f)) {}
 
