@@ -256,12 +256,17 @@ MetalIndex<N> metal_nk_from_reflectance(const SampledSpectrum<N>& reflectance) {
   return m;
 }
 
-// make_bsdf (below) of a PbrMaterial, from its inputs at the point, p = material.inputs(at): of
-// `at` itself it reads all but the texture coordinates, which are for inputs() alone (LastBsdf
-// relies on it).
+// The BSDF of material m for the path's wavelengths. `front` is the dielectric on the front
+// (normal) side of the surface, or nullptr for vacuum. Where the index ratio varies with λ, every
+// lane refracts at the hero's (lane 0's) index, so only lane 0 is right: the path tracer takes
+// such a material's lanes one by one (DispersiveBsdf), the bidirectional integrators keep the
+// hero alone (make_hero_bsdf).
 template <int N>
-Bsdf<N> make_bsdf(const PbrMaterial& material, const SurfaceInputs& p, const SurfacePoint& at,
-                  const SampledWavelengths<N>& lambda, const Dielectric* front) {
+Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavelengths<N>& lambda,
+                  const Dielectric* front) {
+  if (const auto* d = std::get_if<DiffuseMaterial>(&m.kind)) return DiffuseBsdf<N>(sample(d->reflectance, lambda));
+  const PbrMaterial& material = std::get<PbrMaterial>(m.kind);
+  const SurfaceInputs p = material.inputs(at);  // the texture coordinates are read here only (LastBsdf relies on it)
   const float alpha = sqr(p.roughness);
   // Local x is the direction of anisotropy (the shading frame follows it): α_x = mix(α, 1, s²).
   const TrowbridgeReitz distribution(p.anisotropy > 0 ? lerp(sqr(p.anisotropy), alpha, 1.f) : alpha, alpha);
@@ -358,18 +363,6 @@ Bsdf<N> make_bsdf(const PbrMaterial& material, const SurfaceInputs& p, const Sur
   // Built where it is kept, the base and its lobes inside it (not copied there).
   return Bsdf<N>(std::in_place_type<LayeredBsdf<N>>, coat, sheen, p.metallic, metal, dielectric, p.transmission, color,
                  distribution.alpha(), eta, p.specular, dielectric_ms, &extras);
-}
-// The BSDF of material m for the path's wavelengths. `front` is the dielectric on the front
-// (normal) side of the surface, or nullptr for vacuum. Where the index ratio varies with λ, every
-// lane refracts at the hero's (lane 0's) index, so only lane 0 is right: the path tracer takes
-// such a material's lanes one by one (DispersiveBsdf), the bidirectional integrators keep the
-// hero alone (make_hero_bsdf).
-template <int N>
-Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavelengths<N>& lambda,
-                  const Dielectric* front) {
-  if (const auto* d = std::get_if<DiffuseMaterial>(&m.kind)) return DiffuseBsdf<N>(sample(d->reflectance, lambda));
-  const PbrMaterial& material = std::get<PbrMaterial>(m.kind);
-  return make_bsdf(material, material.inputs(at), at, lambda, front);
 }
 
 // make_bsdf for integrators that follow only the hero wavelength past a λ-dependent index ratio:
