@@ -126,6 +126,12 @@ struct PbrMaterial {
 
   SurfaceInputs inputs(const SurfacePoint& at) const;
   bool anisotropic() const { return anisotropy_strength > 0; }
+  // Whether some point of it may need the extensions' layered BSDF (LayeredBsdf, make_bsdf): a
+  // clear coat, sheen, thin film, diffuse transmission or specular colour.
+  bool layered() const {
+    return clearcoat || sheen || iridescence || diffuse_transmission || specular_color != Rgb{1, 1, 1} ||
+           specular_color_texture;
+  }
   // The direction of anisotropy in tangent space (x along the tangent, y the bitangent), unit.
   Vec2f anisotropy_direction(const SurfacePoint& at) const;
 

@@ -17,8 +17,7 @@ SceneFeatures analyze_features(const Scene& scene) {
       f.measured_metals |= p->metal && p->metallic > 0;
       f.textures |= p->base_color_texture || p->metallic_roughness_texture || p->transmission_texture ||
                     p->thickness_texture || p->specular_texture || p->specular_color_texture;
-      f.layers |=
-          p->clearcoat || p->sheen || p->iridescence || p->diffuse_transmission || p->specular_color != Rgb{1, 1, 1};
+      f.layers |= p->layered();
     }
     f.alpha |= m.alpha_mode != AlphaMode::opaque;
   }
