@@ -86,7 +86,9 @@ TEST_CASE("LastBsdf makes the BSDF again when any of make_bsdf's inputs changes"
   const Material other{"other", other_pbr, {}, false};
   const Dielectric water(ConstantIor{1.33f});
 
-  SECTION("the texture at the new point") { check_follows(textured, point(0.25f), nullptr, textured, point(0.75f), nullptr); }
+  SECTION("the texture at the new point") {
+    check_follows(textured, point(0.25f), nullptr, textured, point(0.75f), nullptr);
+  }
   SECTION("the vertex colour") {
     SurfacePoint tinted = point(0.25f);
     tinted.vertex_color = {0.5f, 1, 1, 1};
