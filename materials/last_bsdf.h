@@ -2,10 +2,11 @@
 // The BSDF of a path's last scattering point, made again only where the next point's would differ:
 // a path inside a closed translucent object (diffuse transmission) meets the same untextured
 // material hit after hit, and a layered BSDF (LayeredBsdf) costs about as much to build as to
-// sample; the others are made at every point, cheaper than comparing. The key is
-// all that make_bsdf reads: the material, the front medium, the material's inputs at the point
-// and the point's other attributes (make_bsdf reads the texture coordinates only through the
-// inputs). For one path: its wavelengths must not change between calls.
+// sample. The others, and those of textured materials, are made at every point: cheaper than
+// comparing. What is compared is all that make_bsdf reads but the wavelengths: the material, the
+// front medium, the material's inputs at the point and the point's other attributes (make_bsdf
+// reads the texture coordinates only through the inputs). For one path, whose wavelengths do not
+// change between calls.
 
 #include <cstddef>
 #include <new>
@@ -24,43 +25,49 @@ class LastBsdf {
   LastBsdf(const LastBsdf&) = delete;  // bsdf_ points into storage_
   LastBsdf& operator=(const LastBsdf&) = delete;
 
-  // Inlined into the path's loop, what only layered BSDFs need kept out of line (kept small, it
-  // leaves GCC's inlining budget to the rest of the loop).
+  // Inlined into the path's loop; the comparison, which only a layered material met again needs,
+  // stays out of line (same_point), so that GCC's inlining budget goes to the rest of the loop
+  // (README, twelfth stop). The kept point's inputs are found only then: most layered hits are
+  // not followed by another on the same material, and would pay for their inputs twice.
   [[gnu::always_inline]] const Bsdf<N>& of(const Material& m, const SurfacePoint& at,
                                            const SampledWavelengths<N>& lambda, const Dielectric* front) {
-    if (key_ && key_->material == &m && same_key(m, at, front)) return *bsdf_;
+    if (kept_ && kept_->material == &m && kept_->front == front && same_point(at)) return *bsdf_;
     // Built where it is kept (a prvalue initialises the object in place): a copy cost as much as building it.
-    bsdf_ = std::launder(::new (storage_) Bsdf<N>(make_bsdf(m, at, lambda, front)));
+    bsdf_ = ::new (storage_) Bsdf<N>(make_bsdf(m, at, lambda, front));
     if (std::holds_alternative<LayeredBsdf<N>>(*bsdf_))
-      keep(m, at, front);
-    else  // cheaper to build again than to compare
-      key_.reset();
+      kept_ = Kept{&m, front, at, std::nullopt};
+    else
+      kept_.reset();  // cheaper to build again than to compare
     return *bsdf_;
   }
 
  private:
-  struct Key {
+  // What make_bsdf read, but the wavelengths: the material, the front medium and the point; of the
+  // point, the material's inputs there (once found) and its attributes but the texture coordinates.
+  struct Kept {
     const Material* material;
     const Dielectric* front;
-    SurfaceInputs inputs;
-    SurfacePoint at;  // without its texture coordinates
-    bool operator==(const Key&) const = default;
+    SurfacePoint at;
+    std::optional<SurfaceInputs> inputs;
   };
-  static Key key_of(const Material& m, const SurfacePoint& at, const Dielectric* front) {  // m: a PbrMaterial
-    Key key{&m, front, std::get<PbrMaterial>(m.kind).inputs(at), at};
-    key.at.uv = {};
-    return key;
+  static SurfacePoint without_uv(SurfacePoint at) {
+    at.uv = {};
+    return at;
   }
-  [[gnu::noinline]] bool same_key(const Material& m, const SurfacePoint& at, const Dielectric* front) const {
-    return key_of(m, at, front) == *key_;
+  // Whether make_bsdf at `at` reads what it read at the kept point (same material and front).
+  // By value: −0 equals +0, which could build another BSDF only from a coat normal in the surface
+  // (z = ±0). A textured material's inputs differ from point to point: not worth comparing.
+  [[gnu::noinline]] bool same_point(const SurfacePoint& at) {
+    const PbrMaterial& material = std::get<PbrMaterial>(kept_->material->kind);
+    if (material.textured() || !(without_uv(at) == without_uv(kept_->at))) return false;
+    if (!kept_->inputs) kept_->inputs = material.inputs(kept_->at);
+    return material.inputs(at) == *kept_->inputs;
   }
-  [[gnu::noinline]] void keep(const Material& m, const SurfacePoint& at, const Dielectric* front) {
-    key_ = key_of(m, at, front);
-  }
+
   static_assert(std::is_trivially_destructible_v<Bsdf<N>>);  // replaced without being destroyed
   alignas(Bsdf<N>) std::byte storage_[sizeof(Bsdf<N>)];
   const Bsdf<N>* bsdf_ = nullptr;  // none yet
-  std::optional<Key> key_;         // the kept BSDF's, when it is a LayeredBsdf
+  std::optional<Kept> kept_;       // what the kept BSDF was made of, when it is a LayeredBsdf
 };
 
 }  // namespace prism

@@ -103,6 +103,16 @@ SurfaceInputs PbrMaterial::inputs(const SurfacePoint& at) const {
   return in;
 }
 
+bool PbrMaterial::textured() const {
+  return base_color_texture || metallic_roughness_texture || transmission_texture || thickness_texture ||
+         specular_texture || specular_color_texture ||
+         (clearcoat && (clearcoat->texture || clearcoat->roughness_texture)) ||
+         (sheen && (sheen->color_texture || sheen->roughness_texture)) ||
+         (iridescence && (iridescence->texture || iridescence->thickness_texture)) ||
+         (diffuse_transmission && (diffuse_transmission->texture || diffuse_transmission->color_texture)) ||
+         (anisotropic() && anisotropy_texture);
+}
+
 Vec2f PbrMaterial::anisotropy_direction(const SurfacePoint& at) const {
   Vec2f d(1, 0);
   if (anisotropy_texture) {

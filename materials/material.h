@@ -125,6 +125,9 @@ struct PbrMaterial {
   std::optional<Texture> anisotropy_texture;  // linear; RG direction in [−1, 1], B strength
 
   SurfaceInputs inputs(const SurfacePoint& at) const;
+  // Whether inputs() reads a texture, so that its inputs vary over the surface (a cost hint for
+  // LastBsdf, which compares inputs anyway: a texture missing here costs time, never correctness).
+  bool textured() const;
   bool anisotropic() const { return anisotropy_strength > 0; }
   // Whether some point of it may need the extensions' layered BSDF (LayeredBsdf, make_bsdf): a
   // clear coat, sheen, thin film, diffuse transmission or specular colour.

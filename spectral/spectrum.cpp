@@ -52,7 +52,8 @@ RgbIlluminantSpectrum::RgbIlluminantSpectrum(Rgb rgb) : shape(rgb), illuminant(&
 float RgbIlluminantSpectrum::operator()(float lambda) const { return shape(lambda) * (*illuminant)(lambda); }
 
 template <int N>
-SampledSpectrum<N> RgbIlluminantSpectrum::operator()(const SampledWavelengths<N>& lambda) const {
+requires(N == 1 || N == 4 ||
+         N == 8) SampledSpectrum<N> RgbIlluminantSpectrum::operator()(const SampledWavelengths<N>& lambda) const {
   return shape(lambda) * (*illuminant)(lambda);
 }
 template SampledSpectrum<1> RgbIlluminantSpectrum::operator()(const SampledWavelengths<1>&) const;

@@ -132,10 +132,12 @@ struct RgbUnboundedSpectrum {
 struct RgbIlluminantSpectrum {
   explicit RgbIlluminantSpectrum(Rgb rgb);
   float operator()(float lambda) const;
-  // All lanes at once; out of line (spectrum.cpp, N = 1, 4, 8): inlined into every light sample's
-  // caller, it took GCC's inlining budget from the BSDFs' small helpers there.
+  // All lanes at once; out of line (spectrum.cpp, N = 1, 4, 8; other widths go lane by lane in
+  // sample()): inlined into every light sample's caller, it took GCC's inlining budget from the
+  // BSDFs' small helpers there.
   template <int N>
-  SampledSpectrum<N> operator()(const SampledWavelengths<N>& lambda) const;
+  requires(N == 1 || N == 4 || N == 8) SampledSpectrum<N>
+  operator()(const SampledWavelengths<N>& lambda) const;
   RgbUnboundedSpectrum shape;
   const DenselySampledSpectrum* illuminant;  // D65 with luminance Y = 1
 };

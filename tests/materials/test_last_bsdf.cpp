@@ -1,5 +1,6 @@
 // LastBsdf: a path's next BSDF is the one make_bsdf would make there, whichever of make_bsdf's
-// inputs changed since the last point (material, texture, vertex colour, coat normal, front medium).
+// inputs changed since the last point (material, texture, vertex colour, coat normal, front medium);
+// and PbrMaterial::textured(), its hint that a material's inputs vary over the surface.
 
 #include <catch2/catch.hpp>
 #include <memory>
@@ -68,6 +69,7 @@ void check_follows(const Material& m0, const SurfacePoint& before, const Dielect
   const SampledWavelengths<N> lambda = wavelengths();
   LastBsdf<N> last;
   const Bsdf<N> old = make_bsdf(m0, before, lambda, front0), fresh = make_bsdf(m1, after, lambda, front1);
+  REQUIRE(std::holds_alternative<LayeredBsdf<N>>(old));  // the kind LastBsdf keeps
   REQUIRE_FALSE(same(old, fresh));
   CHECK(same(last.of(m0, before, lambda, front0), old));
   CHECK(same(last.of(m1, after, lambda, front1), fresh));
@@ -99,10 +101,68 @@ TEST_CASE("LastBsdf makes the BSDF again when any of make_bsdf's inputs changes"
     tilted.coat_normal = normalize(Vec3f(0.3f, 0, 1));
     check_follows(plain, point(0.25f), nullptr, plain, tilted, nullptr);
   }
+  SECTION("the material's colours upsampled once (World's constant spectra)") {
+    PbrMaterial green = layered();
+    green.base_color = {0.1f, 0.8f, 0.1f};
+    const ConstantSpectra spectra(green);
+    SurfacePoint upsampled = point(0.25f);
+    upsampled.spectra = &spectra;
+    check_follows(plain, point(0.25f), nullptr, plain, upsampled, nullptr);
+  }
   SECTION("the front medium") { check_follows(plain, point(0.25f), nullptr, plain, point(0.25f), &water); }
   SECTION("the material") { check_follows(plain, point(0.25f), nullptr, other, point(0.25f), nullptr); }
   SECTION("a diffuse material after a layered one") {
     const Material diffuse{"diffuse", DiffuseMaterial{ConstantSpectrum{0.5f}}, {}, false};
     check_follows(plain, point(0.25f), nullptr, diffuse, point(0.25f), nullptr);
+  }
+}
+
+TEST_CASE(
+    "LastBsdf's kept BSDF, its caches filled from other directions, is the one make_bsdf makes at the next point") {
+  // An untextured material at new texture coordinates: the key is equal, so the BSDF is kept, with
+  // what its caches (E(μ_o) and the like) hold from the directions it was evaluated from before.
+  const SampledWavelengths<N> lambda = wavelengths();
+  const Material plain{"layered", layered(), {}, false};
+  LastBsdf<N> last;
+  const Bsdf<N>& first = last.of(plain, point(0.25f), lambda, nullptr);
+  REQUIRE(std::holds_alternative<LayeredBsdf<N>>(first));
+  bsdf_eval(first, normalize(Vec3f(0.7f, -0.2f, 0.4f)), normalize(Vec3f(0.1f, 0.2f, 0.9f)));
+  CHECK(same(last.of(plain, point(0.75f), lambda, nullptr), make_bsdf(plain, point(0.75f), lambda, nullptr)));
+}
+
+TEST_CASE("PbrMaterial::textured names every texture whose texels reach the inputs") {
+  // Each texture slot alone, with a texture whose halves differ in every channel (G = 0 on the
+  // right: a thin wall for the thickness texture). The inputs at the two halves differ, and
+  // textured() must say so (LastBsdf would otherwise compare them in vain).
+  Texture t;
+  t.image = std::make_shared<Image>(2, 1, std::vector<uint8_t>{255, 255, 255, 255, 30, 0, 90, 0});
+  t.nearest = true;
+  using Set = void (*)(PbrMaterial&, const Texture&);
+  const Set slots[] = {
+      [](PbrMaterial& p, const Texture& x) { p.base_color_texture = x; },
+      [](PbrMaterial& p, const Texture& x) { p.metallic_roughness_texture = x; },
+      [](PbrMaterial& p, const Texture& x) { p.transmission_texture = x; },
+      [](PbrMaterial& p, const Texture& x) { p.thickness_texture = x; },
+      [](PbrMaterial& p, const Texture& x) { p.specular_texture = x; },
+      [](PbrMaterial& p, const Texture& x) { p.specular_color_texture = x; },
+      [](PbrMaterial& p, const Texture& x) { p.clearcoat->texture = x; },
+      [](PbrMaterial& p, const Texture& x) { p.clearcoat->roughness_texture = x; },
+      [](PbrMaterial& p, const Texture& x) { p.sheen->color_texture = x; },
+      [](PbrMaterial& p, const Texture& x) { p.sheen->roughness_texture = x; },
+      [](PbrMaterial& p, const Texture& x) { p.iridescence->texture = x; },
+      [](PbrMaterial& p, const Texture& x) { p.iridescence->thickness_texture = x; },
+      [](PbrMaterial& p, const Texture& x) { p.diffuse_transmission->texture = x; },
+      [](PbrMaterial& p, const Texture& x) { p.diffuse_transmission->color_texture = x; },
+      [](PbrMaterial& p, const Texture& x) { p.anisotropy_strength = 0.5f, p.anisotropy_texture = x; },
+  };
+  CHECK_FALSE(layered().textured());
+  int i = 0;
+  for (const Set set : slots) {
+    INFO("slot " << i++);
+    PbrMaterial p = layered();
+    p.transmission = 0.5f;
+    set(p, t);
+    CHECK_FALSE(p.inputs(point(0.25f)) == p.inputs(point(0.75f)));  // the texture reaches the inputs
+    CHECK(p.textured());
   }
 }
