@@ -15,8 +15,7 @@ SceneFeatures analyze_features(const Scene& scene) {
     f.textures |= m.normal_texture || m.emission_texture;
     if (const auto* p = std::get_if<PbrMaterial>(&m.kind)) {
       f.measured_metals |= p->metal && p->metallic > 0;
-      f.textures |= p->base_color_texture || p->metallic_roughness_texture || p->transmission_texture ||
-                    p->thickness_texture || p->specular_texture || p->specular_color_texture;
+      f.textures |= p->textured() || (p->clearcoat && p->clearcoat->normal_texture);
       f.layers |= p->layered();
     }
     f.alpha |= m.alpha_mode != AlphaMode::opaque;

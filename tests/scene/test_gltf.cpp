@@ -282,8 +282,15 @@ TEST_CASE("glTF materials map to Prism's optics: transmission, ior, dispersion, 
       "KHR_materials_iridescence": {}, "KHR_materials_diffuse_transmission": {}}})");
   CHECK_FALSE(analyze_features(s).layers);
   // A specular colour from its texture alone (factor 1) is a layer too: make_bsdf builds it layered.
-  std::get<PbrMaterial>(s.materials[0].kind).specular_color_texture = Texture{};
+  PbrMaterial& p = std::get<PbrMaterial>(s.materials[0].kind);
+  CHECK_FALSE(analyze_features(s).textures);
+  p.specular_color_texture = Texture{};
   CHECK(analyze_features(s).layers);
+  // A layer's texture is one of the scene's textures too.
+  p.specular_color_texture.reset();
+  p.sheen.emplace();
+  p.sheen->color_texture = Texture{};
+  CHECK(analyze_features(s).textures);
 
   // Errors name the problem.
   CHECK_THROWS_WITH(with_material(R"({"extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 2]}}})"),
