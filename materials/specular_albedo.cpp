@@ -13,11 +13,6 @@ namespace {
 
 bool smooth(const SpecularAlbedo::Roughness& r) { return TrowbridgeReitz::effectively_smooth(r.alpha); }
 
-Point point(float mu, const SpecularAlbedo::Roughness& r) { return albedo_tables::point(mu, Lerp{r.a, r.ta}); }
-Point point(const SpecularAlbedo::Direction& d) { return {d.a, d.m, d.ta, d.tm}; }
-
-const Grid& reflection(int h, bool compensated) { return compensated ? specular[h].r_compensated : specular[h].r; }
-
 }  // namespace
 
 SpecularAlbedo::Roughness SpecularAlbedo::roughness(float alpha) {
@@ -29,20 +24,9 @@ SpecularAlbedo::Roughness SpecularAlbedo::roughness(float alpha) {
   });
 }
 
-SpecularAlbedo::Direction SpecularAlbedo::direction(float mu, const Roughness& r) {
-  if (smooth(r)) return {mu, true, 0, 0, 0, 0};
-  const Point p = point(mu, r);
-  return {mu, false, p.a, p.m, p.ta, p.tm};
-}
-
 const SpecularAlbedo& SpecularAlbedo::table() {
   static const SpecularAlbedo t;
   return t;
-}
-
-void SpecularAlbedo::E(const Direction& d, int first, int last, bool compensated, std::span<float> out) const {
-  const Point p = point(d);
-  for (int h = first; h <= last; ++h) out[h - first] = reflection(h, compensated).at(p);
 }
 
 SpecularAlbedo::Curve SpecularAlbedo::curve(const Roughness& r, float eta, bool compensated) const {
@@ -77,8 +61,6 @@ void SpecularAlbedo::interface(const Direction& d, int first, int last, std::spa
   const Point p = point(d);
   for (int h = first; h <= last; ++h) out[h - first] = specular[h].rt.at(p);
 }
-
-float SpecularAlbedo::white(const Direction& d) const { return d.smooth ? 1.f : specular_white.at(point(d)); }
 
 float SpecularAlbedo::white_average(const Roughness& r) const { return specular_white.average({r.a, r.ta}); }
 

@@ -23,6 +23,7 @@
 
 #include "materials/albedo_tables.h"
 #include "materials/fresnel.h"
+#include "materials/microfacet.h"
 
 namespace prism {
 
@@ -44,7 +45,11 @@ class SpecularAlbedo {
     int a, m;
     float ta, tm;
   };
-  static Direction direction(float mu, const Roughness& r);
+  static Direction direction(float mu, const Roughness& r) {
+    if (TrowbridgeReitz::effectively_smooth(r.alpha)) return {mu, true, 0, 0, 0, 0};
+    const albedo_tables::Point p = point(mu, r);
+    return {mu, false, p.a, p.m, p.ta, p.tm};
+  }
   // Where an index η falls on the tables' η axis: between the nodes h and h + 1, at t from h.
   struct Index {
     int h;
@@ -92,7 +97,8 @@ class SpecularAlbedo {
 
   static const SpecularAlbedo& table();
   // E at one direction for each lane's index: the tables are read once at each node the lanes
-  // span, then every lane interpolates its own.
+  // span, then every lane interpolates its own. (In the header with direction() and white(), so
+  // that the lanes' diffuse coupling, which calls all three at every evaluation, makes no calls.)
   template <int N>
   std::array<float, N> E(const Direction& d, const Lanes<N>& lanes, bool compensated) const {
     std::array<float, N> e;
@@ -101,7 +107,8 @@ class SpecularAlbedo {
       return e;
     }
     std::array<float, albedo_tables::kEta> at_nodes;
-    E(d, lanes.first, lanes.last, compensated, at_nodes);
+    const albedo_tables::Point p = point(d);
+    for (int h = lanes.first; h <= lanes.last; ++h) at_nodes[h - lanes.first] = reflection(h, compensated).at(p);
     return lanes.interpolate(at_nodes);
   }
   // E along the tables' μ nodes for one α and η, and its E_avg: found once by a lobe of one index
@@ -138,14 +145,19 @@ class SpecularAlbedo {
     interface(d, lanes.first, lanes.last, at_nodes);
     return lanes.interpolate(at_nodes);
   }
-  float white(const Direction& d) const;
+  float white(const Direction& d) const { return d.smooth ? 1.f : albedo_tables::specular_white.at(point(d)); }
   float white(float mu, const Roughness& r) const;
   float white_average(const Roughness& r) const;
   float white_average(float alpha) const { return white_average(roughness(alpha)); }
 
  private:
-  // E and E_avg at the η nodes first … last (into out[0 …]), for the lanes' interpolation.
-  void E(const Direction& d, int first, int last, bool compensated, std::span<float> out) const;
+  static albedo_tables::Point point(const Direction& d) { return {d.a, d.m, d.ta, d.tm}; }
+  static albedo_tables::Point point(float mu, const Roughness& r) { return albedo_tables::point(mu, {r.a, r.ta}); }
+  // The reflection grid of the η node h, compensated (divided by reflection + transmission) or not.
+  static const albedo_tables::Grid& reflection(int h, bool compensated) {
+    return compensated ? albedo_tables::specular[h].r_compensated : albedo_tables::specular[h].r;
+  }
+  // E_avg at the η nodes first … last (into out[0 …]), for the lanes' interpolation.
   void average(const Roughness& r, int first, int last, bool compensated, std::span<float> out) const;
   void interface(const Direction& d, int first, int last, std::span<float> out) const;
 };
