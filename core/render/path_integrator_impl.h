@@ -1,0 +1,208 @@
+#pragma once
+// The path tracer's definition, instantiated by path_integrator.cpp (8 lanes, the default) and
+// path_integrator_narrow.cpp (1 and 4 lanes). Apart, because GCC's inlining budget is per file
+// (--param inline-unit-growth): with all twelve variants in one file, the 8-lane loop's own
+// helpers (offset_ray_origin, spawn_ray) were left out of line whenever a header it includes grew.
+
+#include <new>
+
+#include "render/path_integrator.h"
+
+#include "materials/dispersive_bsdf.h"
+#include "materials/last_bsdf.h"
+#include "render/direct_light.h"
+#include "render/medium_stack.h"
+#include "render/russian_roulette.h"
+
+namespace prism {
+
+namespace {
+
+// Next-event estimation: one light chosen by power, weighted against BSDF sampling by MIS.
+template <int N, class B>
+SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& si, const Frame& frame, const B& bsdf,
+                                 const Vec3f& wo, const Vec3f& reflect_axis, const SampledWavelengths<N>& lambda,
+                                 const PathSky<N>& sky, Sampler& sampler, RayCounters& counters) {
+  const float u_light = sampler.get_1d();
+  const Vec2f u = sampler.get_2d();
+  const PowerLightSampler& ls = world.light_sampler();
+  if (ls.empty()) return SampledSpectrum<N>(0.f);
+  const uint32_t index = ls.sample(u_light);
+  const float pmf = ls.pmf(index);
+  const Light& light = world.lights()[index];
+  const auto c = light_contribution(world, si, frame, bsdf, wo, light, u, lambda, counters, reflect_axis, &sky);
+  if (!c || pmf == 0.f) return SampledSpectrum<N>(0.f);
+  const float light_pdf = pmf * c->light_pdf;
+  const float weight = is_delta(light) ? 1.f : balance_heuristic(light_pdf, c->bsdf_pdf);
+  return c->f_L * (weight / light_pdf);
+}
+
+// An alpha BLEND surface (opacity alpha) is the surface beside a hole, as Cycles' transparent BSDF
+// mixed in by alpha. The path passes through (returns true) or stays with probabilities in
+// proportion to the two shares' throughputs at this BSDF sample, 1 − α and α w (w: the sample's
+// f cos / pdf, averaged over the lanes), and beta takes its share over that probability: unbiased
+// for any such split (w is drawn first, the choice given w), and beta changes little whichever way
+// the path goes, where choosing the surface with probability α followed a dark surface α of the
+// time (GlassVaseFlowers' BLEND vase: 5x Cycles' variance). Light is sampled only where the path
+// stays, so staying must stay possible: without a sample to follow (w ≤ 0: none, or one of no
+// weight) the split is α to 1 − α, as if w were 1.
+template <int N>
+bool pass_through(float alpha, float w, float u, SampledSpectrum<N>& beta) {
+  const float pass = (1 - alpha) / ((1 - alpha) + alpha * (w > 0 ? w : 1.f));
+  const bool passes = u < pass;
+  beta *= passes ? (1 - alpha) / pass : alpha / (1 - pass);
+  return passes;
+}
+
+}  // namespace
+
+template <int N, bool Media, bool Dispersion>
+SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavelengths<N>& lambda, Sampler& sampler,
+                                 const PathOptions& options, RayCounters& counters,
+                                 const std::optional<SurfaceInteraction>* first) {
+  // At a dispersive interface the lanes' pdfs of a direction differ: path_pdfs are the path's pdfs
+  // under each lane as the hero, relative to each other, for spectral MIS (dispersive_bsdf.h).
+  SampledSpectrum<N> L(0.f), beta(1.f), path_pdfs(1.f);
+  bool specular_bounce = false;
+  float bsdf_pdf_prev = 0.f;  // solid-angle pdf of the BSDF sample that made `ray`
+  Vec3f reflect_axis_prev;    // where that vertex sampled the environment (see LightSampleContext)
+  float eta_scale = 1.f;      // Π η² of the refractions so far: undoes radiance scaling for roulette
+  bool roulette_due = false;  // a bounce since the last roulette, and past the first one
+  // From the last scattering vertex to ray.o, over the BLEND surfaces passed: light met beyond them
+  // is that much farther away (for area lights' solid-angle pdfs).
+  float travelled = 0;
+  MediumStack media;
+  BeerLambert<N> absorption;
+  const PowerLightSampler& light_sampler = world.light_sampler();
+  const PathSky<N> sky(world.environment(), lambda);
+  LastBsdf<N> last_bsdf;
+
+  // `vertex` counts every surface met, `depth` those the path scattered at (not passed through):
+  // each vertex has its own block of sampler dimensions, the depth limit counts bounces.
+  for (int depth = 0, vertex = 0;; ++vertex) {
+    sampler.start_bounce(vertex);
+    ++(vertex == 0 ? counters.primary : counters.secondary);
+    const auto si = vertex == 0 && first ? *first : world.intersect(ray, true);
+    if constexpr (Media) beta *= absorption.transmittance(media, si ? si->t : kInfinity, lambda);
+    const float alpha = si ? si->material->blend_opacity(si->at) : 1.f;  // < 1: an alpha BLEND surface, partly a hole
+
+    // Light reached without sampling it: full weight after a camera or specular vertex,
+    // otherwise the MIS weight of BSDF sampling against light sampling (whose solid-angle pdf,
+    // a callable, is evaluated only then).
+    const auto add_emitted = [&](const SampledSpectrum<N>& Le, int light, const auto& light_pdf_solid_angle) {
+      if (depth == 0 || specular_bounce || !options.next_event) {
+        L += beta * Le;
+      } else {
+        const float light_pdf = light_sampler.pmf(uint32_t(light)) * light_pdf_solid_angle();
+        L += beta * Le * balance_heuristic(bsdf_pdf_prev, light_pdf);
+      }
+    };
+
+    if (!si) {
+      if (const Light* env = world.environment())
+        add_emitted(environment_Le(*env, ray.d, lambda, &sky), world.environment_light(),
+                    [&] { return environment_pdf(*env, ray.d, reflect_axis_prev); });
+      break;
+    }
+    const Material& material = *si->material;
+    if (material.emission) {
+      const int light = world.area_light(si->instance, si->prim);
+      const auto& area = std::get<AreaLight>(world.lights()[light]);
+      if (area.emits_towards(si->wo))
+        add_emitted(material.emitted(si->at, lambda) * alpha, light,
+                    [&] { return area.pdf_solid_angle(travelled + si->t, ray.d); });
+    }
+    // A fully clear BLEND texel is passed at once; past the last bounce, light beyond a BLEND
+    // surface still counts: seen with probability 1 − α.
+    const bool last = depth == options.max_depth;
+    if (alpha <= 0 || (last && alpha < 1 && sampler.get_1d() < 1 - alpha)) {
+      travelled += World::step_beyond(*si, ray);
+      continue;
+    }
+    if (last) break;
+    // Russian roulette from the third surface on, where the path meets it and before shading it
+    // (Cycles' rule): a ray that leaves for the sky is never cut short, so the sky's light, most of
+    // an open scene's, carries no roulette noise (17–23% of the variance on the env-lit shared assets).
+    if (roulette_due) {
+      roulette_due = false;
+      const float q = roulette_termination(beta.max() * eta_scale);
+      if (q > 0.f) {
+        if (sampler.get_1d() < q) break;
+        beta /= 1.f - q;
+      }
+    }
+
+    const bool entering = si->front_face();
+    const Dielectric* front = Media ? media.front_dielectric(material, entering) : nullptr;
+    const Frame frame = si->shading_frame();
+    const Vec3f wo = frame.to_local(si->wo);
+    const Vec3f reflect_axis = material.transmits() ? Vec3f(0.f, 0.f, 0.f) : wo.z < 0 ? -frame.z : frame.z;
+    // Light sampling, then the BSDF sample that continues the path, for either kind of BSDF; at a
+    // BLEND surface, light sampling only where the path stays (see pass_through).
+    bool passes = false;
+    const SampledSpectrum<N> path_pdfs_before = path_pdfs;  // a dispersive sample updates them
+    const auto scatter = [&](const auto& bsdf) {
+      const auto direct = [&] {
+        if (options.next_event && !bsdf_is_specular(bsdf))
+          L += beta * sample_direct(world, *si, frame, bsdf, wo, reflect_axis, lambda, sky, sampler, counters);
+      };
+      if (alpha == 1) direct();
+      const float uc = sampler.get_1d();
+      const auto b = bsdf_sample_f(bsdf, wo, uc, sampler.get_2d());
+      if (alpha < 1) {
+        const bool valid = b && b->pdf > 0.f && !wrong_side(*si, frame.to_world(b->wi), b->transmission);
+        passes = pass_through(alpha, valid ? (b->f * (abs_cos_theta(b->wi) / b->pdf)).average() : 0.f, sampler.get_1d(),
+                              beta);
+        if (!passes) {  // light sampling's MIS weighs by the lanes' pdfs from before this sample
+          const SampledSpectrum<N> sampled = path_pdfs;
+          path_pdfs = path_pdfs_before;
+          direct();
+          path_pdfs = sampled;
+        }
+      }
+      return b;
+    };
+    const auto bs = [&] {
+      if constexpr (Dispersion && N > 1)
+        if (disperses(material, front) && companions_alive(path_pdfs))
+          return scatter(DispersiveBsdf<N>(material, si->at, lambda, front, path_pdfs));
+      return scatter(last_bsdf.of(material, si->at, lambda, front));
+    }();
+    if (passes) {
+      path_pdfs = path_pdfs_before;
+      travelled += World::step_beyond(*si, ray);
+      continue;
+    }
+    if (!bs || bs->pdf == 0.f) break;
+    const Vec3f wi = frame.to_world(bs->wi);
+    if (wrong_side(*si, wi, bs->transmission)) break;
+    beta *= bs->f * (abs_cos_theta(bs->wi) / bs->pdf);
+    specular_bounce = bs->specular;
+    bsdf_pdf_prev = bs->pdf;
+    reflect_axis_prev = reflect_axis;
+    ::new (&ray) Ray(si->spawn(wi));  // in place, as render_tile's camera rays are (renderer.cpp)
+    travelled = 0;
+    if (bs->transmission) {
+      eta_scale *= sqr(bs->eta);
+      if constexpr (Media) media.cross(material, entering);
+    }
+
+    roulette_due = options.russian_roulette && depth >= 1;
+    if (beta.is_zero()) break;
+    ++depth;
+  }
+  return L;
+}
+
+// path_radiance's four variants for N lanes (see PathFeatures), in the file that expands it.
+#define PRISM_INSTANTIATE_PATH_RADIANCE_VARIANT(N, MEDIA, DISPERSION)                                              \
+  template SampledSpectrum<N> path_radiance<N, MEDIA, DISPERSION>(const World&, Ray, const SampledWavelengths<N>&, \
+                                                                  Sampler&, const PathOptions&, RayCounters&,      \
+                                                                  const std::optional<SurfaceInteraction>*);
+#define PRISM_INSTANTIATE_PATH_RADIANCE(N)                \
+  PRISM_INSTANTIATE_PATH_RADIANCE_VARIANT(N, false, false) \
+  PRISM_INSTANTIATE_PATH_RADIANCE_VARIANT(N, false, true)  \
+  PRISM_INSTANTIATE_PATH_RADIANCE_VARIANT(N, true, false)  \
+  PRISM_INSTANTIATE_PATH_RADIANCE_VARIANT(N, true, true)
+
+}  // namespace prism
