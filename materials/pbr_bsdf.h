@@ -171,18 +171,15 @@ class PbrBsdf {
   // from one wo: towards its light samples and its BSDF sample).
   float E_o(float mu) const {
     mu = std::abs(mu);
-    if (mu != outgoing_.mu) outgoing_ = {mu, E(mu), false, 0.f, {}};
+    if (mu != outgoing_.mu) outgoing_ = {mu, E(mu), false, {}};
     return outgoing_.e;
   }
   // E_o's record completed with each lane's E(μ_o) and the white lobe's, for the lanes' coupling.
-  // (Called only with the extensions' per-lane coupling; `film`: it has a film's excess.)
-  const auto& lanes_outgoing(float mu, bool film) const {
+  // (Called only with the extensions' per-lane coupling.)
+  const auto& lanes_outgoing(float mu) const {
     E_o(mu);
     if (!outgoing_.lanes) {
-      const SpecularAlbedo& table = SpecularAlbedo::table();
-      const SpecularAlbedo::Direction o = SpecularAlbedo::direction(outgoing_.mu, roughness_);
-      outgoing_.white = film ? table.white(o) : 0.f;
-      outgoing_.lane_e = table.E(o, extras_->lanes->eta, compensated_);
+      outgoing_.at_lanes = SpecularAlbedo::table().at_lanes(outgoing_.mu, roughness_, extras_->lanes->eta, compensated_);
       outgoing_.lanes = true;
     }
     return outgoing_;
@@ -199,14 +196,13 @@ class PbrBsdf {
     } else {
       if (!extras_ || !extras_->lanes) return SampledSpectrum<N>(scalar_coupling(e_o, wi));
       const LaneCoupling& lanes = *extras_->lanes;
-      const SpecularAlbedo& table = SpecularAlbedo::table();
-      const bool film = lanes.film;
-      // μ_o and μ_i found on the tables once, for all the lanes' indices; what μ_o gives, once per wo.
-      const Outgoing& o = lanes_outgoing(wo.z, film);
-      const SpecularAlbedo::Direction in = SpecularAlbedo::direction(std::abs(wi.z), roughness_);
-      const float white_o = o.white, white_i = film ? table.white(in) : 0.f;
-      const std::array<float, N>& lane_e_o = o.lane_e;  // each lane's E(μ) at its own index, before specular_
-      const std::array<float, N> lane_e_i = table.E(in, lanes.eta, compensated_);
+      // Each lane's E(μ) at its own index (before specular_) and the white lobe's; what μ_o gives, once per wo.
+      const SpecularAlbedo::AtLanes<N>& o = lanes_outgoing(wo.z).at_lanes;
+      const SpecularAlbedo::AtLanes<N> in =
+          SpecularAlbedo::table().at_lanes(std::abs(wi.z), roughness_, lanes.eta, compensated_);
+      const std::array<float, N>& lane_e_o = o.e;
+      const std::array<float, N>& lane_e_i = in.e;
+      const float white_o = o.white, white_i = in.white;
       // 0 where E_avg ≥ 1: a factor 0 or 1 and a divisor chosen per lane in a loop of their own,
       // so that the lanes' loop has no branch and runs on all lanes at once (SIMD).
       std::array<float, N> divisor, kept;
@@ -277,15 +273,12 @@ class PbrBsdf {
   }
 
   // The lanes' own coupling: each lane's index placed on the albedo tables once, its film excess
-  // x_λ (film: some lane's is > 0), and its E_avg (see the header). Built where it is kept, as the lobes are.
+  // x_λ, and its E_avg (see the header). Built where it is kept, as the lobes are.
   struct LaneCoupling {
     SpecularAlbedo::Lanes<N> eta;
     SampledSpectrum<N> excess, e_avg;
-    bool film;
     LaneCoupling(const Extras& extras, float specular, const SpecularAlbedo::Roughness& roughness, bool compensated)
-        : eta(extras.lane_etas->lanes()),
-          excess(extras.lane_excess.value_or(SampledSpectrum<N>(0.f))),
-          film(excess.max() > 0) {
+        : eta(extras.lane_etas->lanes()), excess(extras.lane_excess.value_or(SampledSpectrum<N>(0.f))) {
       const SpecularAlbedo& table = SpecularAlbedo::table();
       const float white_average = extras.lane_excess ? table.white_average(roughness) : 0.f;
       const std::array<float, N> average = table.average(roughness, eta, compensated);
@@ -314,9 +307,8 @@ class PbrBsdf {
   struct Outgoing {  // what depends on wo alone (E_o), for the last |μ_o| asked
     float mu = -1;   // none yet
     float e;
-    bool lanes;  // the lanes' coupling: each lane's E(μ_o), and the white lobe's
-    float white;
-    std::array<float, N> lane_e;  // (before specular_)
+    bool lanes;                              // the lanes' coupling: at_lanes found
+    SpecularAlbedo::AtLanes<N> at_lanes;  // each lane's E(μ_o) (before specular_), and the white lobe's
   };
   mutable Outgoing outgoing_;  // a cache: safe because a Bsdf is built and used within one thread
 };

@@ -24,6 +24,23 @@ SpecularAlbedo::Roughness SpecularAlbedo::roughness(float alpha) {
   });
 }
 
+SpecularAlbedo::AlphaSlice SpecularAlbedo::slice_of(float alpha, bool compensated) {
+  const Lerp a = alpha_node(alpha);
+  const auto along_mu = [&](const Grid& g, std::array<float, kMu>& out) {
+    for (int m = 0; m < kMu; ++m) out[m] = (1 - a.t) * g.e[a.i * kMu + m] + a.t * g.e[(a.i + 1) * kMu + m];
+  };
+  AlphaSlice s;
+  for (int h = 0; h < kEta; ++h) along_mu(reflection(h, compensated), s.e[h]);
+  along_mu(specular_white, s.white);
+  return s;
+}
+
+const SpecularAlbedo::AlphaSlice& SpecularAlbedo::alpha_slice(float alpha, bool compensated) {
+  // A material's few α recur at every hit; one store for each of compensated or not.
+  return compensated ? kept_per_thread_ref<4>(alpha, [](float a) { return slice_of(a, true); })
+                     : kept_per_thread_ref<4>(alpha, [](float a) { return slice_of(a, false); });
+}
+
 const SpecularAlbedo& SpecularAlbedo::table() {
   static const SpecularAlbedo t;
   return t;

@@ -96,20 +96,33 @@ class SpecularAlbedo {
   };
 
   static const SpecularAlbedo& table();
-  // E at one direction for each lane's index: the tables are read once at each node the lanes
-  // span, then every lane interpolates its own. (In the header with direction() and white(), so
-  // that the lanes' diffuse coupling, which calls all three at every evaluation, makes no calls.)
+  // E at one μ for each lane's index, and the white lobe's: for a lobe of one α that looks them up
+  // at several μ (the lanes' diffuse coupling, pbr_bsdf.h). Read from the α's slice of the tables
+  // (alpha_slice), at each η node the lanes span, then every lane interpolates its own. A smooth
+  // lobe's E is the exact Fresnel, and its white albedo 1.
   template <int N>
-  std::array<float, N> E(const Direction& d, const Lanes<N>& lanes, bool compensated) const {
+  struct AtLanes {
     std::array<float, N> e;
-    if (d.smooth) {
-      for (int i = 0; i < N; ++i) e[i] = fresnel_dielectric(d.mu, lanes.eta[i]);
-      return e;
+    float white;
+  };
+  template <int N>
+  AtLanes<N> at_lanes(float mu, const Roughness& r, const Lanes<N>& lanes, bool compensated) const {
+    AtLanes<N> x;
+    if (TrowbridgeReitz::effectively_smooth(r.alpha)) {
+      for (int i = 0; i < N; ++i) x.e[i] = fresnel_dielectric(mu, lanes.eta[i]);
+      x.white = 1;
+      return x;
     }
+    const AlphaSlice& slice = alpha_slice(r.alpha, compensated);
+    const albedo_tables::Lerp m = albedo_tables::locate(std::sqrt(std::max(mu, 0.f)), 1, albedo_tables::kMu);
+    const auto along_mu = [&](const std::array<float, albedo_tables::kMu>& e) {
+      return (1 - m.t) * e[m.i] + m.t * e[m.i + 1];
+    };
     std::array<float, albedo_tables::kEta> at_nodes;
-    const albedo_tables::Point p = point(d);
-    for (int h = lanes.first; h <= lanes.last; ++h) at_nodes[h - lanes.first] = reflection(h, compensated).at(p);
-    return lanes.interpolate(at_nodes);
+    for (int h = lanes.first; h <= lanes.last; ++h) at_nodes[h - lanes.first] = along_mu(slice.e[h]);
+    x.e = lanes.interpolate(at_nodes);
+    x.white = along_mu(slice.white);
+    return x;
   }
   // E along the tables' μ nodes for one α and η, and its E_avg: found once by a lobe of one index
   // that looks up E at several μ per shading point (the diffuse coupling: μ_o, then each μ_i), so
@@ -145,12 +158,21 @@ class SpecularAlbedo {
     interface(d, lanes.first, lanes.last, at_nodes);
     return lanes.interpolate(at_nodes);
   }
-  float white(const Direction& d) const { return d.smooth ? 1.f : albedo_tables::specular_white.at(point(d)); }
   float white(float mu, const Roughness& r) const;
   float white_average(const Roughness& r) const;
   float white_average(float alpha) const { return white_average(roughness(alpha)); }
 
  private:
+  // E along the μ nodes at every η node for one α (the tables' α axis interpolated away), and the
+  // white lobe's: made once per α and thread (kept_per_thread_ref), for at_lanes, whose lanes
+  // span several η nodes (4.8 on average on lobes_all) at each of a BSDF's few evaluations.
+  struct AlphaSlice {
+    std::array<std::array<float, albedo_tables::kMu>, albedo_tables::kEta> e;
+    std::array<float, albedo_tables::kMu> white;
+  };
+  // The slice of α, valid until the next call (in this thread).
+  static const AlphaSlice& alpha_slice(float alpha, bool compensated);
+  static AlphaSlice slice_of(float alpha, bool compensated);
   static albedo_tables::Point point(const Direction& d) { return {d.a, d.m, d.ta, d.tm}; }
   static albedo_tables::Point point(float mu, const Roughness& r) { return albedo_tables::point(mu, {r.a, r.ta}); }
   // The reflection grid of the η node h, compensated (divided by reflection + transmission) or not.

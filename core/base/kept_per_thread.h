@@ -24,10 +24,10 @@ struct KeptPerThread {
 
   // A new key's value, kept in place of the oldest (out of line: the look-up stays small).
   template <class Compute>
-  [[gnu::noinline]] Value keep(float key, const Compute& compute) {
+  [[gnu::noinline]] const Value& keep(float key, const Compute& compute) {
     const int i = next;
     keys[i] = key;
-    values[i] = compute(key);
+    values[i].emplace(compute(key));
     next = (i + 1) % Kept;
     return *values[i];
   }
@@ -38,8 +38,10 @@ struct KeptPerThread {
 // compute must be a function of the key alone (a lambda without captures), giving the same for −0
 // as for +0 (equal keys). NaN keys are never found, so always computed (the build has no
 // -ffinite-math-only, which would break the NaN marking an empty place).
+// kept_per_thread_ref returns the kept value itself, valid until the next call with the same
+// compute in this thread (for values too large to copy at each call).
 template <int Kept = 8, class Compute>
-auto kept_per_thread(float key, const Compute& compute) {
+const auto& kept_per_thread_ref(float key, const Compute& compute) {
   static_assert(std::is_empty_v<Compute>, "kept_per_thread: compute must depend on the key alone");
   using Store = KeptPerThread<decltype(compute(key)), Kept>;
   // Initialised as a constant, so that no guard is tested at each call; one store per Compute type.
@@ -47,6 +49,10 @@ auto kept_per_thread(float key, const Compute& compute) {
   for (int i = 0; i < Kept; ++i)
     if (kept.keys[i] == key) return *kept.values[i];
   return kept.keep(key, compute);
+}
+template <int Kept = 8, class Compute>
+auto kept_per_thread(float key, const Compute& compute) {
+  return kept_per_thread_ref<Kept>(key, compute);
 }
 
 }  // namespace prism

@@ -1,5 +1,5 @@
 // SpecularAlbedo::curve, the E(μ) of one lobe's α and η interpolated along μ once, against the
-// tables' own trilinear look-up (the lanes' path, which reads the grids at each μ).
+// lanes' look-up (at_lanes, from the α's slice of the tables), and that against the white lobe's.
 
 #include <array>
 #include <catch2/catch.hpp>
@@ -24,8 +24,9 @@ TEST_CASE("a lobe's albedo curve gives the tables' E(μ) and E_avg at any α, η
       const SpecularAlbedo::Roughness r = SpecularAlbedo::roughness(alpha);
       const SpecularAlbedo::Curve curve = table.curve(r, eta, compensated);
       const SpecularAlbedo::Lanes<1> lane(std::array<float, 1>{eta});
-      const float e = table.E(SpecularAlbedo::direction(mu, r), lane, compensated)[0];
-      CHECK(SpecularAlbedo::E(curve, mu) == Approx(e).margin(1e-6));
+      const SpecularAlbedo::AtLanes<1> at = table.at_lanes(mu, r, lane, compensated);
+      CHECK(SpecularAlbedo::E(curve, mu) == Approx(at.e[0]).margin(1e-6));
+      CHECK(at.white == Approx(table.white(mu, r)).margin(1e-6));
       CHECK(curve.average == Approx(table.average(r, lane, compensated)[0]).margin(1e-6));
       if (TrowbridgeReitz::effectively_smooth(alpha)) CHECK(SpecularAlbedo::E(curve, mu) == fresnel_dielectric(mu, eta));
     }
