@@ -2,8 +2,9 @@
 // The BSDF of a path's last scattering point, made again only where the next point's would differ:
 // a path inside a closed translucent object (diffuse transmission) meets the same untextured
 // material hit after hit, and a layered BSDF (LayeredBsdf) costs about as much to build as to
-// sample. The others, and those of textured materials, are made at every point: cheaper than
-// comparing. What is compared is all that make_bsdf reads but the wavelengths: the material, the
+// sample. The others, and those of textured materials, are made at every point (cheaper than
+// comparing), beside the kept one, which stays for a later hit on its material (a path from a
+// sphere to the floor and back). What is compared is all that make_bsdf reads but the wavelengths: the material, the
 // front medium, the material's inputs at the point and the point's other attributes (make_bsdf
 // reads the texture coordinates only through the inputs). For one path, whose wavelengths do not
 // change between calls.
@@ -22,7 +23,7 @@ template <int N>
 class LastBsdf {
  public:
   LastBsdf() = default;
-  LastBsdf(const LastBsdf&) = delete;  // bsdf_ points into storage_
+  LastBsdf(const LastBsdf&) = delete;  // the BSDFs returned are in storage_
   LastBsdf& operator=(const LastBsdf&) = delete;
 
   // Inlined into the path's loop; the comparison, which only a layered material met again needs,
@@ -31,14 +32,13 @@ class LastBsdf {
   // not followed by another on the same material, and would pay for their inputs twice.
   [[gnu::always_inline]] const Bsdf<N>& of(const Material& m, const SurfacePoint& at,
                                            const SampledWavelengths<N>& lambda, const Dielectric* front) {
-    if (kept_ && kept_->material == &m && kept_->front == front && same_point(at)) return *bsdf_;
-    // Built where it is kept (a prvalue initialises the object in place): a copy cost as much as building it.
-    bsdf_ = ::new (storage_) Bsdf<N>(make_bsdf(m, at, lambda, front));
-    if (std::holds_alternative<LayeredBsdf<N>>(*bsdf_))
-      kept_ = Kept{&m, front, at, std::nullopt};
-    else
-      kept_.reset();  // cheaper to build again than to compare
-    return *bsdf_;
+    if (kept_ && kept_->material == &m && kept_->front == front && same_point(at)) return *kept_bsdf();
+    // Built where it is kept (a prvalue initialises the object in place): a copy cost as much as
+    // building it. Built in the place the kept BSDF does not hold; a layered one is kept instead.
+    const int slot = kept_ ? 1 - kept_slot_ : 0;
+    const Bsdf<N>* bsdf = ::new (storage_[slot]) Bsdf<N>(make_bsdf(m, at, lambda, front));
+    if (std::holds_alternative<LayeredBsdf<N>>(*bsdf)) kept_ = Kept{&m, front, at, std::nullopt}, kept_slot_ = slot;
+    return *bsdf;
   }
 
  private:
@@ -64,10 +64,13 @@ class LastBsdf {
     return material.inputs(at) == *kept_->inputs;
   }
 
+  const Bsdf<N>* kept_bsdf() const { return std::launder(reinterpret_cast<const Bsdf<N>*>(storage_[kept_slot_])); }
+
   static_assert(std::is_trivially_destructible_v<Bsdf<N>>);  // replaced without being destroyed
-  alignas(Bsdf<N>) std::byte storage_[sizeof(Bsdf<N>)];
-  const Bsdf<N>* bsdf_ = nullptr;  // none yet
-  std::optional<Kept> kept_;       // what the kept BSDF was made of, when it is a LayeredBsdf
+  // Two places: the kept layered BSDF's, and the last other BSDF's.
+  alignas(Bsdf<N>) std::byte storage_[2][sizeof(Bsdf<N>)];
+  int kept_slot_ = 0;         // the kept BSDF's place
+  std::optional<Kept> kept_;  // what the kept BSDF was made of (a LayeredBsdf), if any
 };
 
 }  // namespace prism

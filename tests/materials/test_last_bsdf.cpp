@@ -1,6 +1,7 @@
 // LastBsdf: a path's next BSDF is the one make_bsdf would make there, whichever of make_bsdf's
-// inputs changed since the last point (material, texture, vertex colour, coat normal, front medium);
-// and PbrMaterial::textured(), its hint that a material's inputs vary over the surface.
+// inputs changed since the last point (material, texture, vertex colour, coat normal, front medium),
+// and a layered BSDF kept through a hit on another material; and PbrMaterial::textured(), its hint
+// that a material's inputs vary over the surface.
 
 #include <catch2/catch.hpp>
 #include <memory>
@@ -128,6 +129,25 @@ TEST_CASE(
   REQUIRE(std::holds_alternative<LayeredBsdf<N>>(first));
   bsdf_eval(first, normalize(Vec3f(0.7f, -0.2f, 0.4f)), normalize(Vec3f(0.1f, 0.2f, 0.9f)));
   CHECK(same(last.of(plain, point(0.75f), lambda, nullptr), make_bsdf(plain, point(0.75f), lambda, nullptr)));
+}
+
+TEST_CASE("LastBsdf keeps a layered BSDF through a hit on another material") {
+  // A path from a sphere to the floor and back: the floor's BSDF is made beside the kept one, which
+  // is returned again (the same object, not made again) and is still the one make_bsdf makes. (A
+  // first layered material puts the kept one in the place a BSDF made again would not take.)
+  const SampledWavelengths<N> lambda = wavelengths();
+  PbrMaterial thicker = layered();
+  thicker.iridescence->thickness_max = 400;
+  const Material plain{"layered", layered(), {}, false}, other{"layered, thicker film", thicker, {}, false};
+  const Material diffuse{"diffuse", DiffuseMaterial{ConstantSpectrum{0.5f}}, {}, false};
+  LastBsdf<N> last;
+  last.of(other, point(0.25f), lambda, nullptr);
+  const Bsdf<N>& first = last.of(plain, point(0.25f), lambda, nullptr);
+  REQUIRE(std::holds_alternative<LayeredBsdf<N>>(first));
+  CHECK(same(last.of(diffuse, point(0.25f), lambda, nullptr), make_bsdf(diffuse, point(0.25f), lambda, nullptr)));
+  const Bsdf<N>& again = last.of(plain, point(0.75f), lambda, nullptr);
+  CHECK(&again == &first);
+  CHECK(same(again, make_bsdf(plain, point(0.75f), lambda, nullptr)));
 }
 
 TEST_CASE("PbrMaterial::textured names every texture whose texels reach the inputs") {
