@@ -4,10 +4,10 @@
 // material hit after hit, and a layered BSDF (LayeredBsdf) costs about as much to build as to
 // sample. The others, and those of textured materials, are made at every point (cheaper than
 // comparing), beside the kept one, which stays for a later hit on its material (a path from a
-// sphere to the floor and back). What is compared is all that make_bsdf reads but the wavelengths: the material, the
-// front medium, the material's inputs at the point and the point's other attributes (make_bsdf
-// reads the texture coordinates only through the inputs). For one path, whose wavelengths do not
-// change between calls.
+// sphere to the floor and back). What is compared is all that make_bsdf reads but the
+// wavelengths: the material, the front medium, the material's inputs at the point and the point's
+// other attributes (make_bsdf reads the texture coordinates only through the inputs). For one
+// path, whose wavelengths do not change between calls.
 
 #include <cstddef>
 #include <new>
@@ -37,7 +37,10 @@ class LastBsdf {
     // building it. Built in the place the kept BSDF does not hold; a layered one is kept instead.
     const int slot = kept_ ? 1 - kept_slot_ : 0;
     const Bsdf<N>* bsdf = ::new (storage_[slot]) Bsdf<N>(make_bsdf(m, at, lambda, front));
-    if (std::holds_alternative<LayeredBsdf<N>>(*bsdf)) kept_ = Kept{&m, front, at, std::nullopt}, kept_slot_ = slot;
+    if (std::holds_alternative<LayeredBsdf<N>>(*bsdf)) {
+      kept_ = Kept{&m, front, at, std::nullopt};
+      kept_slot_ = slot;
+    }
     return *bsdf;
   }
 
