@@ -179,7 +179,8 @@ class PbrBsdf {
   const auto& lanes_outgoing(float mu) const {
     E_o(mu);
     if (!outgoing_.lanes) {
-      outgoing_.at_lanes = SpecularAlbedo::table().at_lanes(outgoing_.mu, roughness_, extras_->lanes->eta, compensated_);
+      outgoing_.at_lanes =
+          SpecularAlbedo::table().at_lanes(outgoing_.mu, roughness_, extras_->lanes->eta, compensated_);
       outgoing_.lanes = true;
     }
     return outgoing_;
@@ -307,7 +308,7 @@ class PbrBsdf {
   struct Outgoing {  // what depends on wo alone (E_o), for the last |μ_o| asked
     float mu = -1;   // none yet
     float e;
-    bool lanes;                              // the lanes' coupling: at_lanes found
+    bool lanes;                           // the lanes' coupling: at_lanes found
     SpecularAlbedo::AtLanes<N> at_lanes;  // each lane's E(μ_o) (before specular_), and the white lobe's
   };
   mutable Outgoing outgoing_;  // a cache: safe because a Bsdf is built and used within one thread

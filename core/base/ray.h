@@ -25,7 +25,8 @@ struct Ray {
 // surface, so that a ray leaving from it cannot re-hit that surface (pbrt-v4 §6.8.6). Always
 // inlined: a call costs about as much as its body, and GCC left it out of line in the path loop
 // whenever the loop's file ran out of inlining budget (README, thirteenth stop).
-[[gnu::always_inline]] inline Vec3f offset_ray_origin(const Vec3f& p, const Vec3f& error, const Vec3f& n, const Vec3f& w) {
+[[gnu::always_inline]] inline Vec3f offset_ray_origin(const Vec3f& p, const Vec3f& error, const Vec3f& n,
+                                                      const Vec3f& w) {
   const float d = dot(abs(n), error);
   Vec3f offset = n * d;
   if (dot(w, n) < 0) offset = -offset;

@@ -6,12 +6,11 @@
 
 #include <new>
 
-#include "render/path_integrator.h"
-
 #include "materials/dispersive_bsdf.h"
 #include "materials/last_bsdf.h"
 #include "render/direct_light.h"
 #include "render/medium_stack.h"
+#include "render/path_integrator.h"
 #include "render/russian_roulette.h"
 
 namespace prism {
@@ -199,7 +198,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
   template SampledSpectrum<N> path_radiance<N, MEDIA, DISPERSION>(const World&, Ray, const SampledWavelengths<N>&, \
                                                                   Sampler&, const PathOptions&, RayCounters&,      \
                                                                   const std::optional<SurfaceInteraction>*);
-#define PRISM_INSTANTIATE_PATH_RADIANCE(N)                \
+#define PRISM_INSTANTIATE_PATH_RADIANCE(N)                 \
   PRISM_INSTANTIATE_PATH_RADIANCE_VARIANT(N, false, false) \
   PRISM_INSTANTIATE_PATH_RADIANCE_VARIANT(N, false, true)  \
   PRISM_INSTANTIATE_PATH_RADIANCE_VARIANT(N, true, false)  \
