@@ -9,12 +9,6 @@ namespace prism {
 
 using namespace albedo_tables;
 
-namespace {
-
-bool smooth(const SpecularAlbedo::Roughness& r) { return TrowbridgeReitz::effectively_smooth(r.alpha); }
-
-}  // namespace
-
 SpecularAlbedo::Roughness SpecularAlbedo::roughness(float alpha) {
   // The lobes of a material (metal, dielectric, coat, the diffuse coupling) ask for the same few α
   // at every hit, a path's hits alternating between materials: the cube root costs ~100 instructions.

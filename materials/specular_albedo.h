@@ -46,7 +46,7 @@ class SpecularAlbedo {
     float ta, tm;
   };
   static Direction direction(float mu, const Roughness& r) {
-    if (TrowbridgeReitz::effectively_smooth(r.alpha)) return {mu, true, 0, 0, 0, 0};
+    if (smooth(r)) return {mu, true, 0, 0, 0, 0};
     const albedo_tables::Point p = point(mu, r);
     return {mu, false, p.a, p.m, p.ta, p.tm};
   }
@@ -108,7 +108,7 @@ class SpecularAlbedo {
   template <int N>
   AtLanes<N> at_lanes(float mu, const Roughness& r, const Lanes<N>& lanes, bool compensated) const {
     AtLanes<N> x;
-    if (TrowbridgeReitz::effectively_smooth(r.alpha)) {
+    if (smooth(r)) {
       for (int i = 0; i < N; ++i) x.e[i] = fresnel_dielectric(mu, lanes.eta[i]);
       x.white = 1;
       return x;
@@ -173,6 +173,8 @@ class SpecularAlbedo {
   // The slice of α, valid until the next call (in this thread).
   static const AlphaSlice& alpha_slice(float alpha, bool compensated);
   static AlphaSlice slice_of(float alpha, bool compensated);
+  // A lobe smooth enough to be a mirror: its E is the exact Fresnel, not the tables'.
+  static bool smooth(const Roughness& r) { return TrowbridgeReitz::effectively_smooth(r.alpha); }
   static albedo_tables::Point point(const Direction& d) { return {d.a, d.m, d.ta, d.tm}; }
   static albedo_tables::Point point(float mu, const Roughness& r) { return albedo_tables::point(mu, {r.a, r.ta}); }
   // The reflection grid of the η node h, compensated (divided by reflection + transmission) or not.
