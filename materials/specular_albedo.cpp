@@ -20,12 +20,11 @@ SpecularAlbedo::Roughness SpecularAlbedo::roughness(float alpha) {
 
 SpecularAlbedo::AlphaSlice SpecularAlbedo::slice_of(float alpha, bool compensated) {
   const Lerp a = alpha_node(alpha);
-  const auto along_mu = [&](const Grid& g, std::array<float, kMu>& out) {
-    for (int m = 0; m < kMu; ++m) out[m] = (1 - a.t) * g.e[a.i * kMu + m] + a.t * g.e[(a.i + 1) * kMu + m];
-  };
-  AlphaSlice s;
-  for (int h = 0; h < kEta; ++h) along_mu(reflection(h, compensated), s.e[h]);
-  along_mu(specular_white, s.white);
+  const auto at = [&](const Grid& g, int m) { return (1 - a.t) * g.e[a.i * kMu + m] + a.t * g.e[(a.i + 1) * kMu + m]; };
+  AlphaSlice s{};
+  for (int h = 0; h < kEta; ++h)
+    for (int m = 0; m < kMu; ++m) s.e[m][h] = at(reflection(h, compensated), m);
+  for (int m = 0; m < kMu; ++m) s.white[m] = at(specular_white, m);
   return s;
 }
 

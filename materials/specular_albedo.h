@@ -115,13 +115,12 @@ class SpecularAlbedo {
     }
     const AlphaSlice& slice = alpha_slice(r.alpha, compensated);
     const albedo_tables::Lerp m = albedo_tables::locate(std::sqrt(std::max(mu, 0.f)), 1, albedo_tables::kMu);
-    const auto along_mu = [&](const std::array<float, albedo_tables::kMu>& e) {
-      return (1 - m.t) * e[m.i] + m.t * e[m.i + 1];
-    };
-    std::array<float, albedo_tables::kEta> at_nodes;
-    for (int h = lanes.first; h <= lanes.last; ++h) at_nodes[h - lanes.first] = along_mu(slice.e[h]);
-    x.e = lanes.interpolate(at_nodes);
-    x.white = along_mu(slice.white);
+    // Every η node at once along μ (two rows of contiguous nodes: vector code), then the lanes'.
+    const AlphaSlice::Row &below = slice.e[m.i], &above = slice.e[m.i + 1];
+    AlphaSlice::Row at_nodes;
+    for (int h = 0; h < AlphaSlice::kNodes; ++h) at_nodes[h] = (1 - m.t) * below[h] + m.t * above[h];
+    x.e = lanes.interpolate(std::span<const float>(at_nodes).subspan(lanes.first));
+    x.white = (1 - m.t) * slice.white[m.i] + m.t * slice.white[m.i + 1];
     return x;
   }
   // E along the tables' μ nodes for one α and η, and its E_avg: found once by a lobe of one index
@@ -163,11 +162,14 @@ class SpecularAlbedo {
   float white_average(float alpha) const { return white_average(roughness(alpha)); }
 
  private:
-  // E along the μ nodes at every η node for one α (the tables' α axis interpolated away), and the
-  // white lobe's: made once per α and thread (kept_per_thread_ref), for at_lanes, whose lanes
-  // span several η nodes (4.8 on average on lobes_all) at each of a BSDF's few evaluations.
+  // E at every (μ, η) node for one α (the tables' α axis interpolated away), and the white lobe's
+  // along μ: made once per α and thread (kept_per_thread_ref), for at_lanes, whose lanes span
+  // several η nodes (4.8 on average on lobes_all) at each of a BSDF's few evaluations. A row holds
+  // one μ node's E at every η node, padded to a whole number of vectors (8 floats).
   struct AlphaSlice {
-    std::array<std::array<float, albedo_tables::kMu>, albedo_tables::kEta> e;
+    static constexpr int kNodes = (albedo_tables::kEta + 7) / 8 * 8;
+    using Row = std::array<float, kNodes>;
+    std::array<Row, albedo_tables::kMu> e;
     std::array<float, albedo_tables::kMu> white;
   };
   // The slice of α, valid until the next call (in this thread).
