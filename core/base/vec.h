@@ -98,8 +98,10 @@ template <typename T>
 T length(const Vec3<T>& v) {
   return std::sqrt(dot(v, v));
 }
+// Always inlined: its body is smaller than a call, and GCC's per-file inlining budget, spent by the
+// BSDFs, had left it out of line in their evaluations.
 template <typename T>
-Vec3<T> normalize(const Vec3<T>& v) {
+[[gnu::always_inline]] inline Vec3<T> normalize(const Vec3<T>& v) {
   return v / length(v);
 }
 template <typename T>
