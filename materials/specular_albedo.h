@@ -76,21 +76,10 @@ class SpecularAlbedo {
       first = *std::min_element(h.begin(), h.end()), last = *std::max_element(h.begin(), h.end()) + 1;
     }
     // Each lane's value of a quantity known at the nodes first … last (value[k − first]),
-    // interpolated to its index, v_λ = (1 − t_λ) v_h + t_λ v_{h+1}: each lane picks its two nodes'
-    // values as the nodes go by (a select, not an indexed load), so that every lane runs the same
-    // instructions, all at once (SIMD: the lanes' loop is kept a loop, for the compiler to
-    // vectorise it rather than the nodes' loop, which is mostly shorter than a vector).
+    // interpolated to its index, v_λ = (1 − t_λ) v_h + t_λ v_{h+1}.
     std::array<float, N> interpolate(std::span<const float> value) const {
-      std::array<float, N> at_h{}, at_h1{}, v;
-      for (int k = first; k <= last; ++k) {
-        const float x = value[k - first];
-#pragma GCC unroll 1
-        for (int i = 0; i < N; ++i) {
-          at_h[i] = h[i] == k ? x : at_h[i];
-          at_h1[i] = h[i] + 1 == k ? x : at_h1[i];
-        }
-      }
-      for (int i = 0; i < N; ++i) v[i] = (1 - t[i]) * at_h[i] + t[i] * at_h1[i];
+      std::array<float, N> v;
+      for (int i = 0; i < N; ++i) v[i] = (1 - t[i]) * value[h[i] - first] + t[i] * value[h[i] + 1 - first];
       return v;
     }
   };
