@@ -32,7 +32,8 @@ class SampledSpectrum {
   }                                                                       \
   constexpr SampledSpectrum operator op(const SampledSpectrum& b) const { \
     SampledSpectrum r = *this;                                            \
-    return r op## = b;                                                    \
+    r op## = b;                                                           \
+    return r;                                                             \
   }                                                                       \
   constexpr SampledSpectrum& operator op##=(float s) {                    \
     for (int i = 0; i < N; ++i) v_[i] op## = s;                           \
@@ -40,7 +41,8 @@ class SampledSpectrum {
   }                                                                       \
   constexpr SampledSpectrum operator op(float s) const {                  \
     SampledSpectrum r = *this;                                            \
-    return r op## = s;                                                    \
+    r op## = s;                                                           \
+    return r;                                                             \
   }
   PRISM_LANEWISE(+)
   PRISM_LANEWISE(-)
