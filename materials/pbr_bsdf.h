@@ -452,7 +452,7 @@ class LayeredBsdf {
     const float mu = (coat_tilted_ ? dot(w.z < 0 ? -w : w, coat_frame_.z) : std::abs(w.z));
     return mu > 0 ? coat_weight_ * SpecularAlbedo::E(coat_albedo_, mu) : 0.f;
   }
-  float sheen_E(float mu) const { return sheen_weight_ * SheenAlbedo::table().E(std::abs(mu), sheen_roughness_.cell); }
+  float sheen_E(float mu) const { return sheen_weight_ * SheenAlbedo::E(sheen_roughness_.albedo, std::abs(mu)); }
   // The coat's and the sheen's albedos towards wo, kept for the next evaluation from the same wo.
   struct Outgoing {
     Vec3f wo{0, 0, 0};  // none yet
@@ -518,7 +518,7 @@ class LayeredBsdf {
   SpecularAlbedo::Curve coat_albedo_;  // the coat's E(μ), found once
   bool coat_tilted_;
   Frame coat_frame_;
-  SheenRoughness sheen_roughness_;  // what the sheen's α gives (its place on the albedo table: .cell)
+  SheenRoughness sheen_roughness_;  // what the sheen's α gives (its albedo along μ: .albedo)
   SheenBsdf<N> sheen_;
   float sheen_weight_;
   mutable Outgoing outgoing_;  // a cache: safe because a Bsdf is built and used within one thread

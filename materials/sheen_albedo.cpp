@@ -1,38 +1,27 @@
 #include "materials/sheen_albedo.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include "base/math.h"
-#include "materials/albedo_tables.h"
 
 namespace prism {
 
 using namespace albedo_tables;
 
-const SheenAlbedo& SheenAlbedo::table() {
-  static const SheenAlbedo t;
-  return t;
+namespace {
+// Where α falls on the table's α axis (a square root).
+Lerp sheen_alpha_node(float alpha) { return locate(std::sqrt(std::clamp(alpha, 0.f, 1.f)), 1, kSheenAlpha); }
+}  // namespace
+
+float SheenAlbedo::scale(float alpha) {
+  const Lerp a = sheen_alpha_node(alpha);
+  return lerp(a.t, sheen_scale[a.i], sheen_scale[a.i + 1]);
 }
 
-float SheenAlbedo::scale(float alpha) const {
-  const float y = std::sqrt(std::clamp(alpha, 0.f, 1.f)) * (kSheenAlpha - 1);
-  const int j = std::min(int(y), kSheenAlpha - 2);
-  return lerp(y - float(j), sheen_scale[j], sheen_scale[j + 1]);
-}
-
-SheenAlbedo::Roughness SheenAlbedo::roughness(float alpha) {
-  const float y = std::sqrt(std::clamp(alpha, 0.f, 1.f)) * (kSheenAlpha - 1);
-  const int j = std::min(int(y), kSheenAlpha - 2);
-  return {j, y - float(j)};
-}
-
-float SheenAlbedo::E(float mu, const Roughness& r) const {
-  const float x = std::sqrt(std::clamp(mu, 0.f, 1.f)) * (kSheenMu - 1);
-  const int i = std::min(int(x), kSheenMu - 2);
-  const float tx = x - float(i), ty = r.t;
-  const float* e = sheen_e + r.j * kSheenMu + i;
-  return (1 - ty) * ((1 - tx) * e[0] + tx * e[1]) + ty * ((1 - tx) * e[kSheenMu] + tx * e[kSheenMu + 1]);
+SheenAlbedo::Curve SheenAlbedo::curve(float alpha) {
+  const Lerp a = sheen_alpha_node(alpha);
+  const float* below = sheen_e + a.i * kSheenMu;
+  Curve c;
+  for (int m = 0; m < kSheenMu; ++m) c.e[m] = (1 - a.t) * below[m] + a.t * below[kSheenMu + m];
+  return c;
 }
 
 }  // namespace prism

@@ -7,21 +7,27 @@
 // to 1.03 at α ≈ 0.01): scale(α) = 1 / max(1, max_μ E) brings it back to at most 1, a constant
 // per roughness, so the lobe stays reciprocal. E is that of the scaled lobe.
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "materials/albedo_tables.h"
+
 namespace prism {
 
 class SheenAlbedo {
  public:
-  // Where a roughness α falls on the table's α axis (a square root): found once by a layer that
-  // looks up E at several μ.
-  struct Roughness {
-    int j;
-    float t;
+  // E along the table's μ nodes for one α (its α axis interpolated away): found once per α by a
+  // layer that looks up E at several μ, so that each look-up is one interpolation along μ.
+  struct Curve {
+    std::array<float, albedo_tables::kSheenMu> e;
   };
-  static Roughness roughness(float alpha);
-
-  static const SheenAlbedo& table();
-  float E(float mu, const Roughness& r) const;
-  float scale(float alpha) const;
+  static Curve curve(float alpha);
+  static float E(const Curve& c, float mu) {
+    const albedo_tables::Lerp m = albedo_tables::locate(std::sqrt(std::max(mu, 0.f)), 1, albedo_tables::kSheenMu);
+    return (1 - m.t) * c.e[m.i] + m.t * c.e[m.i + 1];
+  }
+  static float scale(float alpha);
 };
 
 }  // namespace prism

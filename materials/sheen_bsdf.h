@@ -58,16 +58,16 @@ class CharlieSheen {
 };
 
 // What a sheen of roughness α needs that depends on α alone: the fitted lobe (its parameters, and
-// L(½), a pow), its albedo table's scale and cell. A material's few α recur at every hit, so the
-// last few are kept per thread.
+// L(½), a pow), its albedo's scale and its albedo along μ. A material's few α recur at every hit,
+// so the last few are kept per thread.
 struct SheenRoughness {
   CharlieSheen charlie;
   float scale;
-  SheenAlbedo::Roughness cell;
+  SheenAlbedo::Curve albedo;
 
   static SheenRoughness of(float alpha) {
     return kept_per_thread(alpha, [](float a) {
-      return SheenRoughness{CharlieSheen(a), SheenAlbedo::table().scale(a), SheenAlbedo::roughness(a)};
+      return SheenRoughness{CharlieSheen(a), SheenAlbedo::scale(a), SheenAlbedo::curve(a)};
     });
   }
 };
