@@ -366,25 +366,29 @@ class LayeredBsdf {
         if (const Vec3f wi = from_coat(wo, l.wi); same_hemisphere(wo, wi))
           d.add({wi, l.weight * coat_weight_, false, 1.f});
     for (const DeltaLobe<N>& l : base_.delta_lobes(wo))
-      d.add({l.wi, l.weight * base_scale(wo, l.wi), l.transmission, l.eta});
+      d.add({l.wi, l.weight * base_scale(outgoing(wo), l.wi), l.transmission, l.eta});
     return d;
   }
 
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi) const { return eval(wo, wi).f; }
   // Σ (probability of layer) × (its pdf), without the layers' values: what eval(wo, wi).pdf sums.
   float pdf(const Vec3f& wo, const Vec3f& wi) const {
-    const auto p = layer_probabilities(wo);
+    const auto p = layer_probabilities(outgoing(wo));
     float r = p[2] * base_.pdf(wo, wi);
     if (coat_weight_ > 0 && same_hemisphere(wo, wi) && p[0] > 0)
       r += p[0] * coat_.pdf(to_coat(wo, wo), to_coat(wo, wi));
     if (p[1] > 0) r += p[1] * sheen_.pdf(wo, wi);
     return r;
   }
-  BsdfEval<N> eval(const Vec3f& wo, const Vec3f& wi) const { return mixture(wo, wi, layer_probabilities(wo)); }
+  BsdfEval<N> eval(const Vec3f& wo, const Vec3f& wi) const {
+    const Outgoing& o = outgoing(wo);
+    return mixture(wo, wi, o, layer_probabilities(o));
+  }
 
   // Every return names s, each layer's sample made in it (as PbrBsdf::sample_f, for the same reason).
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
-    const auto p = layer_probabilities(wo);
+    const Outgoing& o = outgoing(wo);
+    const auto p = layer_probabilities(o);
     std::optional<BsdfSample<N>> s;
     int layer = 0;
     // The layer is chosen by u.x (within_lobe), as the base chooses its lobe; uc stays for theirs.
@@ -417,7 +421,7 @@ class LayeredBsdf {
       ::new (&s) std::optional<BsdfSample<N>>(base_.sample_f(wo, uc, u));
       if (!s) return s;
       if (s->specular) {
-        s->f *= base_scale(wo, s->wi);
+        s->f *= base_scale(o, s->wi);
         s->pdf *= p[2];
         return s;
       }
@@ -425,7 +429,7 @@ class LayeredBsdf {
     }
     if (!s) return s;
     // The sampled layer's own f and pdf come with its sample.
-    const BsdfEval<N> e = mixture(wo, s->wi, p, Sampled{layer, {s->f, s->pdf}});
+    const BsdfEval<N> e = mixture(wo, s->wi, o, p, Sampled{layer, {s->f, s->pdf}});
     if (!(e.pdf > 0)) {
       s.reset();
       return s;
@@ -463,13 +467,14 @@ class LayeredBsdf {
       outgoing_ = {wo, coat_weight_ > 0 ? coat_E(wo) : 0.f, sheen_weight_ > 0 ? sheen_E(wo.z) : 0.f};
     return outgoing_;
   }
-  float coat_scale(const Vec3f& wo, const Vec3f& wi) const {
-    return coat_weight_ > 0 ? (1 - outgoing(wo).coat) * (1 - coat_E(wi)) : 1.f;
+  // The layers' scalings of what lies beneath them, for wo's albedos o.
+  float coat_scale(const Outgoing& o, const Vec3f& wi) const {
+    return coat_weight_ > 0 ? (1 - o.coat) * (1 - coat_E(wi)) : 1.f;
   }
-  float sheen_scale(const Vec3f& wo, const Vec3f& wi) const {
-    return sheen_weight_ > 0 ? 1 - std::max(outgoing(wo).sheen, sheen_E(wi.z)) : 1.f;
+  float sheen_scale(const Outgoing& o, const Vec3f& wi) const {
+    return sheen_weight_ > 0 ? 1 - std::max(o.sheen, sheen_E(wi.z)) : 1.f;
   }
-  float base_scale(const Vec3f& wo, const Vec3f& wi) const { return coat_scale(wo, wi) * sheen_scale(wo, wi); }
+  float base_scale(const Outgoing& o, const Vec3f& wi) const { return coat_scale(o, wi) * sheen_scale(o, wi); }
 
   // The layer (0 the coat, 1 the sheen, 2 the base) a non-delta sample came from, with its own f and pdf.
   struct Sampled {
@@ -477,21 +482,21 @@ class LayeredBsdf {
     BsdfEval<N> eval;
   };
 
-  // f and Σ (probability of layer) × (its pdf), for the probabilities p of wo; the layer a sample
-  // came from is not evaluated again.
-  BsdfEval<N> mixture(const Vec3f& wo, const Vec3f& wi, const std::array<float, 3>& p,
+  // f and Σ (probability of layer) × (its pdf), for wo's albedos o and probabilities p; the layer a
+  // sample came from is not evaluated again.
+  BsdfEval<N> mixture(const Vec3f& wo, const Vec3f& wi, const Outgoing& o, const std::array<float, 3>& p,
                       const std::optional<Sampled>& sampled = {}) const {
     const auto layer = [&](int i, const auto& evaluate) {
       return sampled && sampled->layer == i ? sampled->eval : evaluate();
     };
     const BsdfEval<N> base = layer(2, [&] { return base_.eval(wo, wi); });
-    BsdfEval<N> r{base.f * sheen_scale(wo, wi), p[2] * base.pdf};
+    BsdfEval<N> r{base.f * sheen_scale(o, wi), p[2] * base.pdf};
     std::optional<BsdfEval<N>> sheen;  // none at weight 0, where p[1] = 0 too
     if (sheen_weight_ > 0) {
       sheen = layer(1, [&] { return BsdfEval<N>{sheen_.f(wo, wi), sheen_.pdf(wo, wi)}; });
       r.f += sheen->f;
     }
-    r.f *= coat_scale(wo, wi);
+    r.f *= coat_scale(o, wi);
     if (coat_weight_ > 0 && same_hemisphere(wo, wi)) {
       const BsdfEval<N> c = layer(0, [&] { return coat_.eval(to_coat(wo, wo), to_coat(wo, wi)); });
       r.f += c.f * coat_weight_;
@@ -501,9 +506,8 @@ class LayeredBsdf {
     return r;
   }
 
-  // The coat's, the sheen's and the base's shares of the light scattered towards wo.
-  std::array<float, 3> layer_probabilities(const Vec3f& wo) const {
-    const Outgoing& o = outgoing(wo);
+  // The coat's, the sheen's and the base's shares of the light scattered towards wo, from its albedos o.
+  std::array<float, 3> layer_probabilities(const Outgoing& o) const {
     const float c = o.coat, t = 1 - c, s = o.sheen;
     std::array<float, 3> w = {c, t * s, t * (1 - s)};
     const float sum = w[0] + w[1] + w[2];
