@@ -22,20 +22,24 @@ namespace prism {
 
 class CharlieSheen {
  public:
-  explicit CharlieSheen(float alpha) : alpha_(std::clamp(alpha, 1e-3f, 1.f)), fit_(sqr(1 - alpha_)), L_half_(L(0.5f)) {}
+  explicit CharlieSheen(float alpha)
+      : alpha_(std::clamp(alpha, 1e-3f, 1.f)),
+        fit_(sqr(1 - alpha_)),
+        L_half_(L(0.5f)),
+        D_scale_((2 + 1 / alpha_) / (2 * kPi)),
+        D_power_(0.5f / alpha_) {}
 
-  float D(const Vec3f& m) const {
-    const float sin2 = std::max(0.f, 1 - m.z * m.z);
-    return (2 + 1 / alpha_) * std::pow(sin2, 0.5f / alpha_) / (2 * kPi);
-  }
+  // D of a normal m with cos²θ_m = cos2: (sin²θ_m)^{1/(2α)} scaled.
+  float D(float cos2) const { return D_scale_ * std::pow(std::max(0.f, 1 - cos2), D_power_); }
   // The height-correlated G(wo, wi), with Λ(μ_o) given (found once per wo).
   float G(float lambda_o, const Vec3f& wi) const { return 1 / (1 + lambda_o + Lambda(std::abs(wi.z))); }
   // f / C for directions on the same side.
   float value(const Vec3f& wo, const Vec3f& wi) const { return value(wo, wi, Lambda(std::abs(wo.z))); }
   float value(const Vec3f& wo, const Vec3f& wi, float lambda_o) const {
-    const Vec3f m = wo + wi;
-    if (wo.z == 0 || wi.z == 0 || length_squared(m) == 0) return 0.f;
-    return D(normalize(m) * (m.z < 0 ? -1.f : 1.f)) * G(lambda_o, wi) / std::abs(4 * wo.z * wi.z);
+    const Vec3f m = wo + wi;  // the half vector, unnormalised: D needs only its cos²θ
+    const float m2 = length_squared(m);
+    if (wo.z == 0 || wi.z == 0 || m2 == 0) return 0.f;
+    return D(m.z * m.z / m2) * G(lambda_o, wi) / std::abs(4 * wo.z * wi.z);
   }
   float Lambda(float mu) const { return mu < 0.5f ? std::exp(L(mu)) : std::exp(2 * L_half_ - L(1 - mu)); }
 
@@ -53,8 +57,9 @@ class CharlieSheen {
   float L(float mu) const { return fit_.a / (1 + fit_.b * std::pow(mu, fit_.c)) + fit_.d * mu + fit_.e; }
 
   float alpha_;
-  Fit fit_;       // the fit's parameters at α_
-  float L_half_;  // L(½), where Λ is mirrored
+  Fit fit_;                  // the fit's parameters at α_
+  float L_half_;             // L(½), where Λ is mirrored
+  float D_scale_, D_power_;  // (2 + 1/α) / (2π) and 1/(2α)
 };
 
 // What a sheen of roughness α needs that depends on α alone: the fitted lobe (its parameters, and
