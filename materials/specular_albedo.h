@@ -73,7 +73,9 @@ class SpecularAlbedo {
         const Index x = index(eta[i]);
         h[i] = x.h, t[i] = x.t;
       }
-      first = *std::min_element(h.begin(), h.end()), last = *std::max_element(h.begin(), h.end()) + 1;
+      first = h[0], last = h[0];
+      for (int i = 1; i < N; ++i) first = std::min(first, h[i]), last = std::max(last, h[i]);  // a reduction (SIMD)
+      ++last;
     }
     // Each lane's value of a quantity known at the nodes first … last (value[k − first]),
     // interpolated to its index, v_λ = (1 − t_λ) v_h + t_λ v_{h+1}.
