@@ -22,8 +22,10 @@ SpecularAlbedo::AlphaSlice SpecularAlbedo::slice_of(float alpha, bool compensate
   const Lerp a = alpha_node(alpha);
   const auto at = [&](const Grid& g, int m) { return (1 - a.t) * g.e[a.i * kMu + m] + a.t * g.e[(a.i + 1) * kMu + m]; };
   AlphaSlice s{};
-  for (int h = 0; h < kEta; ++h)
+  for (int h = 0; h < kEta; ++h) {
     for (int m = 0; m < kMu; ++m) s.e[m][h] = at(reflection(h, compensated), m);
+    s.average[h] = reflection(h, compensated).average(a);
+  }
   for (int m = 0; m < kMu; ++m) s.white[m] = at(specular_white, m);
   return s;
 }
@@ -53,11 +55,6 @@ SpecularAlbedo::Curve SpecularAlbedo::curve(const Roughness& r, float eta, bool 
   c.eta = eta;
   c.smooth = smooth(r);
   return c;
-}
-
-void SpecularAlbedo::average(const Roughness& r, int first, int last, bool compensated, std::span<float> out) const {
-  const Lerp a{r.a, r.ta};
-  for (int h = first; h <= last; ++h) out[h - first] = reflection(h, compensated).average(a);
 }
 
 float SpecularAlbedo::interface(float mu, const Roughness& r, float eta) const {

@@ -128,12 +128,10 @@ class SpecularAlbedo {
     const albedo_tables::Lerp m = albedo_tables::locate(std::sqrt(std::max(mu, 0.f)), 1, albedo_tables::kMu);
     return (1 - m.t) * c.e[m.i] + m.t * c.e[m.i + 1];
   }
-  // The averages for each lane's index, as the lanes' E above.
+  // The averages for each lane's index, as the lanes' E above (from the same slice).
   template <int N>
   std::array<float, N> average(const Roughness& r, const Lanes<N>& lanes, bool compensated) const {
-    std::array<float, albedo_tables::kEta> at_nodes;
-    average(r, lanes.first, lanes.last, compensated, at_nodes);
-    return lanes.interpolate(at_nodes);
+    return lanes.interpolate(std::span<const float>(alpha_slice(r.alpha, compensated).average).subspan(lanes.first));
   }
   float interface(float mu, const Roughness& r, float eta) const;
   // interface() at one direction for each lane's index, as the lanes' E above.
@@ -153,14 +151,16 @@ class SpecularAlbedo {
   float white_average(float alpha) const { return white_average(roughness(alpha)); }
 
  private:
-  // E at every (μ, η) node for one α (the tables' α axis interpolated away), and the white lobe's
-  // along μ: made once per α and thread (kept_per_thread_ref), for at_lanes, whose lanes span
-  // several η nodes (4.8 on average on lobes_all) at each of a BSDF's few evaluations. A row holds
-  // one μ node's E at every η node, padded to a whole number of vectors (8 floats).
+  // E at every (μ, η) node for one α (the tables' α axis interpolated away), E_avg at every η
+  // node, and the white lobe's E along μ: made once per α and thread (kept_per_thread_ref), for
+  // at_lanes, whose lanes span several η nodes (4.8 on average on lobes_all) at each of a BSDF's
+  // few evaluations. A row holds one μ node's E at every η node, padded to a whole number of
+  // vectors (8 floats).
   struct AlphaSlice {
     static constexpr int kNodes = (albedo_tables::kEta + 7) / 8 * 8;
     using Row = std::array<float, kNodes>;
     std::array<Row, albedo_tables::kMu> e;
+    Row average;
     std::array<float, albedo_tables::kMu> white;
   };
   // The slice of α, valid until the next call (in this thread).
@@ -174,8 +174,6 @@ class SpecularAlbedo {
   static const albedo_tables::Grid& reflection(int h, bool compensated) {
     return compensated ? albedo_tables::specular[h].r_compensated : albedo_tables::specular[h].r;
   }
-  // E_avg at the η nodes first … last (into out[0 …]), for the lanes' interpolation.
-  void average(const Roughness& r, int first, int last, bool compensated, std::span<float> out) const;
   void interface(const Direction& d, int first, int last, std::span<float> out) const;
 };
 
