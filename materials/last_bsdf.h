@@ -59,12 +59,13 @@ class LastBsdf {
   }
   // Whether make_bsdf at `at` reads what it read at the kept point (same material and front).
   // By value: −0 equals +0, which could build another BSDF only from a coat normal in the surface
-  // (z = ±0). A textured material's inputs differ from point to point: not worth comparing.
+  // (z = ±0). A textured material's inputs differ from point to point: not worth comparing. Inputs
+  // read from no texture depend on the point's other attributes alone, which are equal here.
   [[gnu::noinline]] bool same_point(const SurfacePoint& at) {
     const PbrMaterial& material = std::get<PbrMaterial>(kept_->material->kind);
     if (material.textured() || !(without_uv(at) == without_uv(kept_->at))) return false;
     if (!kept_->inputs) kept_->inputs = material.inputs(kept_->at);
-    return material.inputs(at) == *kept_->inputs;
+    return !kept_->inputs->textured || material.inputs(at) == *kept_->inputs;
   }
 
   const Bsdf<N>* kept_bsdf() const { return std::launder(reinterpret_cast<const Bsdf<N>*>(storage_[kept_slot_])); }

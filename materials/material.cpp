@@ -50,7 +50,10 @@ ConstantSpectra::ConstantSpectra(const PbrMaterial& m) {
 
 SurfaceInputs PbrMaterial::inputs(const SurfacePoint& at) const {
   SurfaceInputs in{base_color, alpha, metallic, roughness, transmission, dielectric.thin_walled};
-  const auto texel = [&](const std::optional<Texture>& t, bool srgb) { return t->lookup(at.uv[t->texcoord], srgb); };
+  const auto texel = [&](const std::optional<Texture>& t, bool srgb) {
+    in.textured = true;
+    return t->lookup(at.uv[t->texcoord], srgb);
+  };
   if (base_color_texture) {
     const auto c = texel(base_color_texture, true);
     in.base_color = {in.base_color.r * c[0], in.base_color.g * c[1], in.base_color.b * c[2]};

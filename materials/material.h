@@ -68,6 +68,7 @@ struct SurfaceInputs {
   float diffuse_transmission = 0;
   Rgb diffuse_transmission_color{1, 1, 1};
   float anisotropy = 0;  // KHR_materials_anisotropy's strength × texture B
+  bool textured = false;  // some input was read from a texture (else they are the same at every point)
 
   bool operator==(const SurfaceInputs&) const = default;
 };
@@ -126,7 +127,8 @@ struct PbrMaterial {
 
   SurfaceInputs inputs(const SurfacePoint& at) const;
   // Whether inputs() reads a texture, so that its inputs vary over the surface (a cost hint for
-  // LastBsdf, which compares inputs anyway: a texture missing here costs time, never correctness).
+  // LastBsdf, which relies on SurfaceInputs::textured: a texture missing here costs time, never
+  // correctness).
   bool textured() const;
   bool anisotropic() const { return anisotropy_strength > 0; }
   // Whether some point of it may need the extensions' layered BSDF (LayeredBsdf, make_bsdf): a

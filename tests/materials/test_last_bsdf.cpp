@@ -1,7 +1,7 @@
 // LastBsdf: a path's next BSDF is the one make_bsdf would make there, whichever of make_bsdf's
 // inputs changed since the last point (material, texture, vertex colour, coat normal, front medium),
 // and a layered BSDF kept through a hit on another material; and PbrMaterial::textured(), its hint
-// that a material's inputs vary over the surface.
+// that a material's inputs vary over the surface, and SurfaceInputs::textured, what it relies on.
 
 #include <catch2/catch.hpp>
 #include <memory>
@@ -153,7 +153,8 @@ TEST_CASE("LastBsdf keeps a layered BSDF through a hit on another material") {
 TEST_CASE("PbrMaterial::textured names every texture whose texels reach the inputs") {
   // Each texture slot alone, with a texture whose halves differ in every channel (G = 0 on the
   // right: a thin wall for the thickness texture). The inputs at the two halves differ, and
-  // textured() must say so (LastBsdf would otherwise compare them in vain).
+  // textured() must say so (LastBsdf would otherwise compare them in vain), and so must the inputs
+  // (LastBsdf takes inputs read from no texture to be the same at every point).
   Texture t;
   t.image = std::make_shared<Image>(2, 1, std::vector<uint8_t>{255, 255, 255, 255, 30, 0, 90, 0});
   t.nearest = true;
@@ -176,6 +177,7 @@ TEST_CASE("PbrMaterial::textured names every texture whose texels reach the inpu
       [](PbrMaterial& p, const Texture& x) { p.anisotropy_strength = 0.5f, p.anisotropy_texture = x; },
   };
   CHECK_FALSE(layered().textured());
+  CHECK_FALSE(layered().inputs(point(0.25f)).textured);
   int i = 0;
   for (const Set set : slots) {
     INFO("slot " << i++);
@@ -184,5 +186,6 @@ TEST_CASE("PbrMaterial::textured names every texture whose texels reach the inpu
     set(p, t);
     CHECK_FALSE(p.inputs(point(0.25f)) == p.inputs(point(0.75f)));  // the texture reaches the inputs
     CHECK(p.textured());
+    CHECK(p.inputs(point(0.25f)).textured);
   }
 }
