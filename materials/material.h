@@ -67,7 +67,7 @@ struct SurfaceInputs {
   float iridescence = 0, iridescence_thickness = 0;  // nanometres
   float diffuse_transmission = 0;
   Rgb diffuse_transmission_color{1, 1, 1};
-  float anisotropy = 0;  // KHR_materials_anisotropy's strength × texture B
+  float anisotropy = 0;   // KHR_materials_anisotropy's strength × texture B
   bool textured = false;  // some input was read from a texture (else they are the same at every point)
 
   bool operator==(const SurfaceInputs&) const = default;
