@@ -50,8 +50,10 @@ struct Point {
   float ta, tm;
 };
 inline Lerp alpha_node(float alpha) { return locate(std::cbrt(alpha), 1, kAlpha); }
+// Where μ falls on a table's n nodes uniform in √μ (the specular tables' and the sheen's).
+inline Lerp mu_node(float mu, int n = kMu) { return locate(std::sqrt(std::max(mu, 0.f)), 1, n); }
 inline Point point(float mu, const Lerp& a) {
-  const Lerp m = locate(std::sqrt(std::max(mu, 0.f)), 1, kMu);
+  const Lerp m = mu_node(mu);
   return {a.i, m.i, a.t, m.t};
 }
 inline Point point(float mu, float alpha) { return point(mu, alpha_node(alpha)); }
@@ -83,6 +85,7 @@ inline float sheen_alpha_of(int a) {
   const float s = float(a) / (kSheenAlpha - 1);
   return s * s;
 }
+inline Lerp sheen_alpha_node(float alpha) { return locate(std::sqrt(std::clamp(alpha, 0.f, 1.f)), 1, kSheenAlpha); }
 inline float sheen_mu_of(int m) {
   const float s = float(m) / (kSheenMu - 1);
   return std::max(s * s, 1e-4f);

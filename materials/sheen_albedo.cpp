@@ -6,11 +6,6 @@ namespace prism {
 
 using namespace albedo_tables;
 
-namespace {
-// Where α falls on the table's α axis (a square root).
-Lerp sheen_alpha_node(float alpha) { return locate(std::sqrt(std::clamp(alpha, 0.f, 1.f)), 1, kSheenAlpha); }
-}  // namespace
-
 float SheenAlbedo::scale(float alpha) {
   const Lerp a = sheen_alpha_node(alpha);
   return lerp(a.t, sheen_scale[a.i], sheen_scale[a.i + 1]);

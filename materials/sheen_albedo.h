@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 
+#include "base/math.h"
 #include "materials/albedo_tables.h"
 
 namespace prism {
@@ -24,8 +25,8 @@ class SheenAlbedo {
   };
   static Curve curve(float alpha);
   static float E(const Curve& c, float mu) {
-    const albedo_tables::Lerp m = albedo_tables::locate(std::sqrt(std::max(mu, 0.f)), 1, albedo_tables::kSheenMu);
-    return (1 - m.t) * c.e[m.i] + m.t * c.e[m.i + 1];
+    const albedo_tables::Lerp m = albedo_tables::mu_node(mu, albedo_tables::kSheenMu);
+    return lerp(m.t, c.e[m.i], c.e[m.i + 1]);
   }
   static float scale(float alpha);
 };

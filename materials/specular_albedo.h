@@ -21,6 +21,7 @@
 #include <cmath>
 #include <span>
 
+#include "base/math.h"
 #include "materials/albedo_tables.h"
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"
@@ -105,13 +106,13 @@ class SpecularAlbedo {
       return x;
     }
     const AlphaSlice& slice = alpha_slice(r.alpha, compensated);
-    const albedo_tables::Lerp m = albedo_tables::locate(std::sqrt(std::max(mu, 0.f)), 1, albedo_tables::kMu);
+    const albedo_tables::Lerp m = albedo_tables::mu_node(mu);
     // Every η node at once along μ (two rows of contiguous nodes: vector code), then the lanes'.
     const AlphaSlice::Row &below = slice.e[m.i], &above = slice.e[m.i + 1];
     AlphaSlice::Row at_nodes;
     for (int h = 0; h < AlphaSlice::kNodes; ++h) at_nodes[h] = (1 - m.t) * below[h] + m.t * above[h];
     x.e = lanes.interpolate(std::span<const float>(at_nodes).subspan(lanes.first));
-    x.white = (1 - m.t) * slice.white[m.i] + m.t * slice.white[m.i + 1];
+    x.white = lerp(m.t, slice.white[m.i], slice.white[m.i + 1]);
     return x;
   }
   // E along the tables' μ nodes for one α and η, and its E_avg: found once by a lobe of one index
@@ -125,8 +126,8 @@ class SpecularAlbedo {
   Curve curve(const Roughness& r, float eta, bool compensated) const;
   static float E(const Curve& c, float mu) {
     if (c.smooth) return fresnel_dielectric(mu, c.eta);
-    const albedo_tables::Lerp m = albedo_tables::locate(std::sqrt(std::max(mu, 0.f)), 1, albedo_tables::kMu);
-    return (1 - m.t) * c.e[m.i] + m.t * c.e[m.i + 1];
+    const albedo_tables::Lerp m = albedo_tables::mu_node(mu);
+    return lerp(m.t, c.e[m.i], c.e[m.i + 1]);
   }
   // The averages for each lane's index, as the lanes' E above (from the same slice).
   template <int N>
