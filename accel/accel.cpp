@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "accel/bvh_traverse.h"
-#include "base/first_equal.h"
+#include "core/base/first_equal.h"
 
 namespace prism {
 

@@ -22,7 +22,7 @@
 
 #include "accel/bvh.h"
 #include "accel/triangle.h"
-#include "base/instance.h"
+#include "core/base/instance.h"
 
 namespace prism {
 

@@ -15,10 +15,10 @@
 #include <vector>
 
 #include "accel/simd.h"
-#include "base/bounds.h"
-#include "base/frustum.h"
-#include "base/huge_page_allocator.h"
-#include "base/ray.h"
+#include "core/base/bounds.h"
+#include "core/base/frustum.h"
+#include "core/base/huge_page_allocator.h"
+#include "core/base/ray.h"
 
 namespace prism {
 

@@ -12,7 +12,7 @@
 #include <type_traits>
 
 #include "accel/bvh.h"
-#include "base/error.h"
+#include "core/base/error.h"
 
 namespace prism {
 

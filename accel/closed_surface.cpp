@@ -7,7 +7,7 @@
 #include <numeric>
 #include <vector>
 
-#include "base/bounds.h"
+#include "core/base/bounds.h"
 
 namespace prism {
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <span>
 
-#include "base/vec.h"
+#include "core/base/vec.h"
 
 namespace prism {
 

@@ -12,7 +12,7 @@
 #include <limits>
 
 #include "accel/simd.h"
-#include "base/ray.h"
+#include "core/base/ray.h"
 
 namespace prism {
 

@@ -12,8 +12,8 @@
 #include <memory>
 #include <string>
 
-#include "base/parallel.h"
-#include "base/sampler.h"
+#include "core/base/parallel.h"
+#include "core/base/sampler.h"
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"
 #include "materials/sheen_bsdf.h"
@@ -176,7 +176,8 @@ int main(int argc, char** argv) {
   out += "};\n\nconst Grid specular_white = " + grid(*white) +
          ";\n\nconst float sheen_e[kSheenAlpha * kSheenMu] = " + array(sheen_e, kSheenAlpha * kSheenMu) +
          ";\n\nconst float sheen_scale[kSheenAlpha] = " + array(sheen_scale, kSheenAlpha) +
-         ";\n\nconst float film_excess[kFilmSteps * kFilmSteps] = " + array(film_cells, kFilmSteps * kFilmSteps) + ";\n\n}  // namespace prism::albedo_tables\n";
+         ";\n\nconst float film_excess[kFilmSteps * kFilmSteps] = " + array(film_cells, kFilmSteps * kFilmSteps) +
+         ";\n\n}  // namespace prism::albedo_tables\n";
   const std::string tmp = std::string(argv[1]) + ".tmp";
   FILE* f = std::fopen(tmp.c_str(), "w");
   if (!f || std::fwrite(out.data(), 1, out.size(), f) != out.size() || std::fclose(f) != 0 ||

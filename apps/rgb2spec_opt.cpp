@@ -10,9 +10,9 @@
 #include <cmath>
 #include <vector>
 
-#include "base/clock.h"
-#include "base/error.h"
-#include "base/parallel.h"
+#include "core/base/clock.h"
+#include "core/base/error.h"
+#include "core/base/parallel.h"
 #include "spectral/sigmoid_fit.h"
 
 namespace {

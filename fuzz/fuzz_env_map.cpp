@@ -3,10 +3,10 @@
 
 #include <cstring>
 
-#include "base/error.h"
-#include "base/log.h"
+#include "core/base/error.h"
+#include "core/base/log.h"
+#include "core/render/environment_map.h"
 #include "fuzz/fuzz_input_file.h"
-#include "render/environment_map.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   prism::log::set_level(prism::log::Level::quiet);

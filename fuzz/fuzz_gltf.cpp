@@ -2,8 +2,8 @@
 // the importer, the camera and the World (BVH, lights), stopping before rendering.
 
 #include "apps/prism/scene_setup.h"
-#include "base/error.h"
-#include "base/log.h"
+#include "core/base/error.h"
+#include "core/base/log.h"
 #include "fuzz/fuzz_input_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-#include "base/error.h"
+#include "core/base/error.h"
 #include "materials/texture.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

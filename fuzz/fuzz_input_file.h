@@ -12,8 +12,7 @@ namespace prism::fuzz {
 
 // A folder of this process's own, removed when the fuzzer exits.
 struct ScratchFolder {
-  std::filesystem::path path =
-      std::filesystem::temp_directory_path() / ("prism_fuzz_" + std::to_string(getpid()));
+  std::filesystem::path path = std::filesystem::temp_directory_path() / ("prism_fuzz_" + std::to_string(getpid()));
   ScratchFolder() { std::filesystem::create_directories(path); }
   ~ScratchFolder() {
     std::error_code ignored;

@@ -9,7 +9,7 @@
 #include <optional>
 #include <type_traits>
 
-#include "base/vec.h"
+#include "core/base/vec.h"
 #include "spectral/sampled_spectrum.h"
 
 namespace prism {

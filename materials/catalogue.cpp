@@ -5,9 +5,9 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
-#include "base/data_path.h"
-#include "base/error.h"
-#include "base/table_file.h"
+#include "core/base/data_path.h"
+#include "core/base/error.h"
+#include "core/base/table_file.h"
 
 namespace prism {
 

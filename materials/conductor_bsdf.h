@@ -65,8 +65,7 @@ class ConductorBsdf {
     if (!wm) return {SampledSpectrum<N>(0.f), 0.f};
     const TrowbridgeReitz::Facet t = distribution_.facet(wo, wi, *wm);
     const SampledSpectrum<N> f = reflectance(dot(wo, *wm)) * (t.D * t.G / (4 * wo.z * wi.z));
-    return {compensate_ ? f * multiple_scattering(wo.z) : f,
-            TrowbridgeReitz::reflected_pdf(wo, t)};
+    return {compensate_ ? f * multiple_scattering(wo.z) : f, TrowbridgeReitz::reflected_pdf(wo, t)};
   }
 
   // Visible-normal sampling: pdf(wi) = D_wo(m) / (4 |wo·m|) = G1(wo) D(m) / (4 |cos θ_o|).

@@ -4,7 +4,7 @@
 
 #include <optional>
 
-#include "base/warp.h"
+#include "core/base/warp.h"
 #include "materials/bsdf_sample.h"
 
 namespace prism {

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <optional>
 
-#include "base/vec.h"
+#include "core/base/vec.h"
 
 namespace prism {
 

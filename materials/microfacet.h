@@ -9,8 +9,8 @@
 
 #include <cmath>
 
-#include "base/vec.h"
-#include "base/warp.h"
+#include "core/base/vec.h"
+#include "core/base/warp.h"
 
 namespace prism {
 

@@ -24,8 +24,8 @@
 #include <new>
 #include <optional>
 
-#include "base/frame.h"
-#include "base/warp.h"
+#include "core/base/frame.h"
+#include "core/base/warp.h"
 #include "materials/conductor_bsdf.h"
 #include "materials/dielectric_bsdf.h"
 #include "materials/sheen_albedo.h"
@@ -164,9 +164,7 @@ class PbrBsdf {
     return 0.f;
   }
 
-  float E(float mu) const {
-    return specular_ * SpecularAlbedo::E(albedo_curve_, std::abs(mu));
-  }
+  float E(float mu) const { return specular_ * SpecularAlbedo::E(albedo_curve_, std::abs(mu)); }
   // E(μ_o), kept for the next evaluation from the same wo (a path evaluates the BSDF of one hit
   // from one wo: towards its light samples and its BSDF sample).
   float E_o(float mu) const {

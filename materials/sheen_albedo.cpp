@@ -1,6 +1,6 @@
 #include "materials/sheen_albedo.h"
 
-#include "base/math.h"
+#include "core/base/math.h"
 
 namespace prism {
 

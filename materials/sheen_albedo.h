@@ -11,7 +11,7 @@
 #include <array>
 #include <cmath>
 
-#include "base/math.h"
+#include "core/base/math.h"
 #include "materials/albedo_tables.h"
 
 namespace prism {

@@ -13,8 +13,8 @@
 #include <cmath>
 #include <optional>
 
-#include "base/kept_per_thread.h"
-#include "base/warp.h"
+#include "core/base/kept_per_thread.h"
+#include "core/base/warp.h"
 #include "materials/bsdf_sample.h"
 #include "materials/sheen_albedo.h"
 

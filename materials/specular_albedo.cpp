@@ -1,6 +1,6 @@
 #include "materials/specular_albedo.h"
 
-#include "base/kept_per_thread.h"
+#include "core/base/kept_per_thread.h"
 #include "materials/albedo_tables.h"
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"

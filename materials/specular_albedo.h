@@ -21,7 +21,7 @@
 #include <cmath>
 #include <span>
 
-#include "base/math.h"
+#include "core/base/math.h"
 #include "materials/albedo_tables.h"
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"

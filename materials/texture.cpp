@@ -8,7 +8,7 @@
 #include <cstring>
 #include <limits>
 
-#include "base/error.h"
+#include "core/base/error.h"
 
 namespace prism {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "base/vec.h"
+#include "core/base/vec.h"
 
 namespace prism {
 

@@ -23,7 +23,7 @@
 #include <optional>
 #include <type_traits>
 
-#include "base/math.h"
+#include "core/base/math.h"
 #include "materials/albedo_tables.h"
 #include "materials/fresnel.h"
 #include "spectral/sampled_spectrum.h"

@@ -2,9 +2,9 @@
 
 #include <utility>
 
-#include "base/data_path.h"
-#include "base/error.h"
-#include "base/table_file.h"
+#include "core/base/data_path.h"
+#include "core/base/error.h"
+#include "core/base/table_file.h"
 
 namespace prism {
 

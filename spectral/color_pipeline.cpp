@@ -7,8 +7,8 @@
 #include <sstream>
 #include <utility>
 
-#include "base/data_path.h"
-#include "base/error.h"
+#include "core/base/data_path.h"
+#include "core/base/error.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 

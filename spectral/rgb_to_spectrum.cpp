@@ -4,8 +4,8 @@
 #include <cstring>
 #include <fstream>
 
-#include "base/data_path.h"
-#include "base/error.h"
+#include "core/base/data_path.h"
+#include "core/base/error.h"
 
 namespace prism {
 

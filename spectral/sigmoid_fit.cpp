@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "base/parallel.h"
-#include "base/transform.h"
+#include "core/base/parallel.h"
+#include "core/base/transform.h"
 #include "spectral/cie.h"
 #include "spectral/color_pipeline.h"
 

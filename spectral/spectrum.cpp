@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "base/error.h"
+#include "core/base/error.h"
 #include "spectral/cie.h"
 
 namespace prism {

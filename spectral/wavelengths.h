@@ -12,7 +12,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "base/vec.h"
+#include "core/base/vec.h"
 #include "spectral/sampled_spectrum.h"
 
 namespace prism {

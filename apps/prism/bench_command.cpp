@@ -12,11 +12,11 @@
 
 #include "apps/prism/commands.h"
 #include "apps/prism/ray_file.h"
-#include "base/clock.h"
-#include "base/log.h"
-#include "base/parallel.h"
-#include "render/world.h"
-#include "scene/gltf_loader.h"
+#include "core/base/clock.h"
+#include "core/base/log.h"
+#include "core/base/parallel.h"
+#include "core/render/world.h"
+#include "core/scene/gltf_loader.h"
 
 namespace prism {
 

@@ -11,7 +11,7 @@
 
 #include "apps/prism/commands.h"
 #include "apps/prism/scene_setup.h"
-#include "base/log.h"
+#include "core/base/log.h"
 
 namespace prism {
 

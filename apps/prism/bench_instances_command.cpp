@@ -11,11 +11,11 @@
 #include <memory>
 
 #include "apps/prism/commands.h"
-#include "base/clock.h"
-#include "base/log.h"
-#include "base/parallel.h"
-#include "base/rng.h"
-#include "render/world.h"
+#include "core/base/clock.h"
+#include "core/base/log.h"
+#include "core/base/parallel.h"
+#include "core/base/rng.h"
+#include "core/render/world.h"
 
 namespace prism {
 

@@ -11,9 +11,9 @@
 #include "apps/prism/commands.h"
 #include "apps/prism/plot.h"
 #include "apps/prism/scene_setup.h"
-#include "base/error.h"
-#include "base/log.h"
-#include "render/image_output.h"
+#include "core/base/error.h"
+#include "core/base/log.h"
+#include "core/render/image_output.h"
 
 namespace prism {
 

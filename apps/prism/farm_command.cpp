@@ -16,7 +16,7 @@
 
 #include "apps/prism/commands.h"
 #include "apps/prism/frame_sequence.h"
-#include "base/error.h"
+#include "core/base/error.h"
 
 namespace prism {
 

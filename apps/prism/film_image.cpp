@@ -1,6 +1,6 @@
 #include "apps/prism/film_image.h"
 
-#include "render/error_estimate.h"
+#include "core/render/error_estimate.h"
 
 namespace prism {
 

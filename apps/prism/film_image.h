@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "render/film.h"
-#include "render/image_output.h"
+#include "core/render/film.h"
+#include "core/render/image_output.h"
 
 namespace prism {
 

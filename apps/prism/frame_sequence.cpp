@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "base/error.h"
+#include "core/base/error.h"
 
 namespace prism {
 

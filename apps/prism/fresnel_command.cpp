@@ -7,7 +7,7 @@
 
 #include "apps/prism/commands.h"
 #include "apps/prism/plot.h"
-#include "base/error.h"
+#include "core/base/error.h"
 #include "materials/catalogue.h"
 #include "materials/fresnel.h"
 #include "spectral/cie.h"

@@ -4,8 +4,8 @@
 
 #include "apps/prism/commands.h"
 #include "apps/prism/scene_setup.h"
-#include "base/log.h"
-#include "scene/scene_features.h"
+#include "core/base/log.h"
+#include "core/scene/scene_features.h"
 
 namespace prism {
 

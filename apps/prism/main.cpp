@@ -5,7 +5,7 @@
 #include <new>
 
 #include "apps/prism/commands.h"
-#include "base/error.h"
+#include "core/base/error.h"
 
 int main(int argc, char** argv) {
   CLI::App app("Prism: a spectral path tracer (glTF 2.0 in, scene-referred OpenEXR out)", "prism");

@@ -6,9 +6,9 @@
 
 #include "apps/prism/commands.h"
 #include "apps/prism/film_image.h"
-#include "base/error.h"
-#include "render/error_estimate.h"
-#include "render/merge.h"
+#include "core/base/error.h"
+#include "core/render/error_estimate.h"
+#include "core/render/merge.h"
 
 namespace prism {
 

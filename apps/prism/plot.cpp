@@ -7,8 +7,8 @@
 #include <array>
 #include <cmath>
 
-#include "base/error.h"
-#include "render/image_output.h"
+#include "core/base/error.h"
+#include "core/render/image_output.h"
 
 namespace prism {
 

@@ -4,7 +4,7 @@
 #include <cstring>
 #include <fstream>
 
-#include "base/error.h"
+#include "core/base/error.h"
 
 namespace prism {
 

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "base/ray.h"
+#include "core/base/ray.h"
 
 namespace prism {
 

@@ -14,14 +14,14 @@
 #include "apps/prism/film_image.h"
 #include "apps/prism/frame_sequence.h"
 #include "apps/prism/scene_setup.h"
-#include "base/clock.h"
-#include "base/error.h"
-#include "base/interrupt.h"
-#include "base/log.h"
-#include "render/checkpoint.h"
-#include "render/error_estimate.h"
-#include "render/image_output.h"
-#include "render/pass_schedule.h"
+#include "core/base/clock.h"
+#include "core/base/error.h"
+#include "core/base/interrupt.h"
+#include "core/base/log.h"
+#include "core/render/checkpoint.h"
+#include "core/render/error_estimate.h"
+#include "core/render/image_output.h"
+#include "core/render/pass_schedule.h"
 
 namespace prism {
 

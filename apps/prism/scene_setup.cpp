@@ -8,11 +8,11 @@
 #include <limits>
 #include <sstream>
 
-#include "base/clock.h"
-#include "base/error.h"
-#include "base/log.h"
-#include "render/environment_map.h"
-#include "scene/gltf_loader.h"
+#include "core/base/clock.h"
+#include "core/base/error.h"
+#include "core/base/log.h"
+#include "core/render/environment_map.h"
+#include "core/scene/gltf_loader.h"
 #include "spectral/cie.h"
 
 namespace prism {

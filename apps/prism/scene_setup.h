@@ -7,8 +7,8 @@
 #include <memory>
 #include <string>
 
-#include "render/renderer.h"
-#include "scene/gltf_loader.h"
+#include "core/render/renderer.h"
+#include "core/scene/gltf_loader.h"
 
 namespace prism {
 

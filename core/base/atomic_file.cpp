@@ -1,9 +1,9 @@
-#include "base/atomic_file.h"
+#include "core/base/atomic_file.h"
 
 #include <unistd.h>
 
-#include "base/error.h"
-#include "base/interrupt.h"
+#include "core/base/error.h"
+#include "core/base/interrupt.h"
 
 namespace prism {
 

@@ -1,7 +1,7 @@
 #pragma once
 // Axis-aligned bounding box.
 
-#include "base/vec.h"
+#include "core/base/vec.h"
 
 namespace prism {
 

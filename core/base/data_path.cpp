@@ -1,8 +1,8 @@
-#include "base/data_path.h"
+#include "core/base/data_path.h"
 
 #include <cstdlib>
 
-#include "base/error.h"
+#include "core/base/error.h"
 
 namespace prism {
 

@@ -1,8 +1,8 @@
-#include "base/distribution.h"
+#include "core/base/distribution.h"
 
 #include <algorithm>
 
-#include "base/error.h"
+#include "core/base/error.h"
 
 namespace prism {
 

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "base/vec.h"
+#include "core/base/vec.h"
 
 namespace prism {
 

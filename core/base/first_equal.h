@@ -10,7 +10,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "base/rng.h"
+#include "core/base/rng.h"
 
 namespace prism {
 

@@ -1,7 +1,7 @@
 #pragma once
 // Orthonormal frame around a unit vector: world <-> local coordinates, local z = the normal.
 
-#include "base/vec.h"
+#include "core/base/vec.h"
 
 namespace prism {
 

@@ -7,9 +7,9 @@
 #include <array>
 #include <cmath>
 
-#include "base/bounds.h"
-#include "base/transform.h"
-#include "base/vec.h"
+#include "core/base/bounds.h"
+#include "core/base/transform.h"
+#include "core/base/vec.h"
 
 namespace prism {
 

@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "base/transform.h"
+#include "core/base/transform.h"
 
 namespace prism {
 

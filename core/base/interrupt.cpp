@@ -1,4 +1,4 @@
-#include "base/interrupt.h"
+#include "core/base/interrupt.h"
 
 #include <signal.h>
 #include <unistd.h>

@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "base/vec.h"
+#include "core/base/vec.h"
 
 namespace prism {
 

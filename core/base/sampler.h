@@ -22,8 +22,8 @@
 #include <immintrin.h>
 #endif
 
-#include "base/rng.h"
-#include "base/vec.h"
+#include "core/base/rng.h"
+#include "core/base/vec.h"
 
 namespace prism {
 

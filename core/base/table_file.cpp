@@ -1,10 +1,10 @@
-#include "base/table_file.h"
+#include "core/base/table_file.h"
 
 #include <charconv>
 #include <fstream>
 #include <sstream>
 
-#include "base/error.h"
+#include "core/base/error.h"
 
 namespace prism {
 

@@ -1,9 +1,9 @@
-#include "base/transform.h"
+#include "core/base/transform.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "base/math.h"
+#include "core/base/math.h"
 
 namespace prism {
 

@@ -4,8 +4,8 @@
 
 #include <array>
 
-#include "base/bounds.h"
-#include "base/vec.h"
+#include "core/base/bounds.h"
+#include "core/base/vec.h"
 
 namespace prism {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "base/math.h"
+#include "core/base/math.h"
 
 namespace prism {
 

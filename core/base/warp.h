@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "base/vec.h"
+#include "core/base/vec.h"
 
 namespace prism {
 

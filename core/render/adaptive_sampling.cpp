@@ -1,4 +1,4 @@
-#include "render/adaptive_sampling.h"
+#include "core/render/adaptive_sampling.h"
 
 #include <algorithm>
 #include <cmath>

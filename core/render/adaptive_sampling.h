@@ -19,7 +19,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "render/film.h"
+#include "core/render/film.h"
 
 namespace prism {
 

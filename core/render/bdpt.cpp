@@ -1,11 +1,11 @@
-#include "render/bdpt.h"
+#include "core/render/bdpt.h"
 
 #include <vector>
 
-#include "render/direct_light.h"
-#include "render/medium_stack.h"
-#include "render/path_vertex.h"
-#include "render/russian_roulette.h"
+#include "core/render/direct_light.h"
+#include "core/render/medium_stack.h"
+#include "core/render/path_vertex.h"
+#include "core/render/russian_roulette.h"
 #include "spectral/cie.h"
 
 namespace prism {

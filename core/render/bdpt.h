@@ -12,14 +12,14 @@
 // that a light path through the prism does not turn the camera path's own estimates into the
 // hero wavelength's too; each strategy's estimate stays unbiased lane by lane.
 
-#include "base/sampler.h"
-#include "render/camera.h"
-#include "render/light_emission.h"
-#include "render/path_integrator.h"
-#include "render/ray_counters.h"
-#include "render/splat_buffer.h"
-#include "render/vcm.h"
-#include "render/world.h"
+#include "core/base/sampler.h"
+#include "core/render/camera.h"
+#include "core/render/light_emission.h"
+#include "core/render/path_integrator.h"
+#include "core/render/ray_counters.h"
+#include "core/render/splat_buffer.h"
+#include "core/render/vcm.h"
+#include "core/render/world.h"
 
 namespace prism {
 

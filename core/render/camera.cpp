@@ -1,11 +1,11 @@
-#include "render/camera.h"
+#include "core/render/camera.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "base/checksum.h"
-#include "base/error.h"
+#include "core/base/checksum.h"
+#include "core/base/error.h"
 
 namespace prism {
 

@@ -4,9 +4,9 @@
 
 #include <optional>
 
-#include "base/frustum.h"
-#include "base/ray.h"
-#include "scene/scene.h"
+#include "core/base/frustum.h"
+#include "core/base/ray.h"
+#include "core/scene/scene.h"
 
 namespace prism {
 

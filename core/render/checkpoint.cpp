@@ -1,12 +1,12 @@
-#include "render/checkpoint.h"
+#include "core/render/checkpoint.h"
 
 #include <unistd.h>
 
 #include <fstream>
 
-#include "base/atomic_file.h"
-#include "base/checksum.h"
-#include "base/error.h"
+#include "core/base/atomic_file.h"
+#include "core/base/checksum.h"
+#include "core/base/error.h"
 
 namespace prism {
 

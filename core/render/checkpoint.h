@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <string>
 
-#include "render/renderer.h"
+#include "core/render/renderer.h"
 
 namespace prism {
 

@@ -4,10 +4,10 @@
 
 #include <optional>
 
-#include "base/frame.h"
+#include "core/base/frame.h"
+#include "core/render/ray_counters.h"
+#include "core/render/world.h"
 #include "materials/bsdf.h"
-#include "render/ray_counters.h"
-#include "render/world.h"
 
 namespace prism {
 

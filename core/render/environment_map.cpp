@@ -1,12 +1,12 @@
-#include "render/environment_map.h"
+#include "core/render/environment_map.h"
 
 #include <algorithm>
 #include <cctype>
 
-#include "base/checksum.h"
-#include "base/error.h"
-#include "base/log.h"
-#include "render/image_output.h"
+#include "core/base/checksum.h"
+#include "core/base/error.h"
+#include "core/base/log.h"
+#include "core/render/image_output.h"
 
 namespace prism {
 

@@ -12,8 +12,8 @@
 #include <filesystem>
 #include <optional>
 
-#include "base/distribution.h"
-#include "scene/scene.h"
+#include "core/base/distribution.h"
+#include "core/scene/scene.h"
 
 namespace prism {
 

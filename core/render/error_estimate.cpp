@@ -1,4 +1,4 @@
-#include "render/error_estimate.h"
+#include "core/render/error_estimate.h"
 
 #include <algorithm>
 #include <cmath>

@@ -21,9 +21,9 @@
 
 #include <array>
 
-#include "base/rng.h"
-#include "base/vec.h"
-#include "render/film.h"
+#include "core/base/rng.h"
+#include "core/base/vec.h"
+#include "core/render/film.h"
 
 namespace prism {
 

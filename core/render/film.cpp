@@ -1,4 +1,4 @@
-#include "render/film.h"
+#include "core/render/film.h"
 
 #include <algorithm>
 #include <cmath>

@@ -15,9 +15,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "base/vec.h"
-#include "render/fixed_point.h"
-#include "render/spectral_bins.h"
+#include "core/base/vec.h"
+#include "core/render/fixed_point.h"
+#include "core/render/spectral_bins.h"
 #include "spectral/rgb.h"
 
 namespace prism {

@@ -1,4 +1,4 @@
-#include "render/image_output.h"
+#include "core/render/image_output.h"
 
 #include <ImfAttribute.h>
 #include <ImfChannelList.h>
@@ -15,8 +15,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "base/atomic_file.h"
-#include "base/error.h"
+#include "core/base/atomic_file.h"
+#include "core/base/error.h"
 
 namespace prism {
 

@@ -3,8 +3,8 @@
 
 #include <cstdint>
 
-#include "base/frame.h"
-#include "base/ray.h"
+#include "core/base/frame.h"
+#include "core/base/ray.h"
 #include "materials/material.h"
 
 namespace prism {

@@ -8,8 +8,8 @@
 
 #include <optional>
 
+#include "core/render/lights.h"
 #include "materials/bsdf_sample.h"
-#include "render/lights.h"
 
 namespace prism {
 

@@ -9,11 +9,11 @@
 #include <type_traits>
 #include <variant>
 
-#include "base/frame.h"
-#include "base/warp.h"
-#include "render/environment_map.h"
-#include "render/interaction.h"
-#include "scene/scene.h"
+#include "core/base/frame.h"
+#include "core/base/warp.h"
+#include "core/render/environment_map.h"
+#include "core/render/interaction.h"
+#include "core/scene/scene.h"
 #include "spectral/spectrum.h"
 
 namespace prism {

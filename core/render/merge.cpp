@@ -1,12 +1,12 @@
-#include "render/merge.h"
+#include "core/render/merge.h"
 
 #include <algorithm>
 #include <map>
 #include <optional>
 #include <sstream>
 
-#include "base/error.h"
-#include "render/checkpoint.h"
+#include "core/base/error.h"
+#include "core/render/checkpoint.h"
 
 namespace prism {
 

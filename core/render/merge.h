@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "render/renderer.h"
+#include "core/render/renderer.h"
 
 namespace prism {
 

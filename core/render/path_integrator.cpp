@@ -1,5 +1,5 @@
 // The path tracer with 8 lanes, the default (path_integrator_impl.h), alone in its file.
-#include "render/path_integrator_impl.h"
+#include "core/render/path_integrator_impl.h"
 
 namespace prism {
 

@@ -3,9 +3,9 @@
 // and multiple importance sampling of light and BSDF samples (balance heuristic; Veach 1997,
 // ch. 9), and Russian roulette on the path throughput (Arvo & Kirk 1990).
 
-#include "base/sampler.h"
-#include "render/ray_counters.h"
-#include "render/world.h"
+#include "core/base/sampler.h"
+#include "core/render/ray_counters.h"
+#include "core/render/world.h"
 
 namespace prism {
 

@@ -6,12 +6,12 @@
 
 #include <new>
 
+#include "core/render/direct_light.h"
+#include "core/render/medium_stack.h"
+#include "core/render/path_integrator.h"
+#include "core/render/russian_roulette.h"
 #include "materials/dispersive_bsdf.h"
 #include "materials/last_bsdf.h"
-#include "render/direct_light.h"
-#include "render/medium_stack.h"
-#include "render/path_integrator.h"
-#include "render/russian_roulette.h"
 
 namespace prism {
 

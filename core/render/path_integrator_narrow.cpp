@@ -1,5 +1,5 @@
 // The path tracer with 1 and 4 lanes (--wavelengths), apart from the 8-lane default (path_integrator_impl.h).
-#include "render/path_integrator_impl.h"
+#include "core/render/path_integrator_impl.h"
 
 namespace prism {
 

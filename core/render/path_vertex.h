@@ -4,9 +4,9 @@
 // Georgiev et al. 2012, "Light Transport Simulation with Vertex Connection and Merging",
 // tech. report eqs. 31–37: dVCM, dVC and dVM).
 
-#include "base/frame.h"
+#include "core/base/frame.h"
+#include "core/render/interaction.h"
 #include "materials/bsdf.h"
-#include "render/interaction.h"
 
 namespace prism {
 

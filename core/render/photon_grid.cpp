@@ -1,4 +1,4 @@
-#include "render/photon_grid.h"
+#include "core/render/photon_grid.h"
 
 #include <cmath>
 

@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "base/vec.h"
+#include "core/base/vec.h"
 
 namespace prism {
 

@@ -9,8 +9,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "base/error.h"
-#include "render/image_output.h"
+#include "core/base/error.h"
+#include "core/render/image_output.h"
 
 namespace prism {
 

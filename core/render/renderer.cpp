@@ -1,19 +1,19 @@
-#include "render/renderer.h"
+#include "core/render/renderer.h"
 
 #include <array>
 #include <chrono>
 #include <mutex>
 #include <new>
 
-#include "base/clock.h"
-#include "base/error.h"
-#include "base/parallel.h"
-#include "base/progress.h"
-#include "render/adaptive_sampling.h"
-#include "render/bdpt.h"
-#include "render/error_estimate.h"
-#include "render/pass_schedule.h"
-#include "render/whitted_integrator.h"
+#include "core/base/clock.h"
+#include "core/base/error.h"
+#include "core/base/parallel.h"
+#include "core/base/progress.h"
+#include "core/render/adaptive_sampling.h"
+#include "core/render/bdpt.h"
+#include "core/render/error_estimate.h"
+#include "core/render/pass_schedule.h"
+#include "core/render/whitted_integrator.h"
 #include "spectral/cie.h"
 
 namespace prism {
@@ -258,8 +258,7 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
             if (!film.add(p, fs, r)) ++stats.invalid;
             if (bins)
               for (int i = 0; i < N; ++i)
-                if (c.lambda.pdf()[i] > 0)
-                  film.add_spectral(p, c.lambda[i], double(c.L[i]) / (c.lambda.pdf()[i] * N));
+                if (c.lambda.pdf()[i] > 0) film.add_spectral(p, c.lambda[i], double(c.L[i]) / (c.lambda.pdf()[i] * N));
           }
         }
       }

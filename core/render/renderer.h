@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "render/camera.h"
-#include "render/film.h"
-#include "render/path_integrator.h"
+#include "core/render/camera.h"
+#include "core/render/film.h"
+#include "core/render/path_integrator.h"
 
 namespace prism {
 

@@ -1,9 +1,9 @@
-#include "render/spectral_bins.h"
+#include "core/render/spectral_bins.h"
 
 #include <algorithm>
 #include <sstream>
 
-#include "base/error.h"
+#include "core/base/error.h"
 #include "spectral/wavelengths.h"
 
 namespace prism {

@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "render/fixed_point.h"
+#include "core/render/fixed_point.h"
 #include "spectral/rgb.h"
 
 namespace prism {

@@ -18,8 +18,8 @@
 
 #include <vector>
 
-#include "render/path_vertex.h"
-#include "render/photon_grid.h"
+#include "core/render/path_vertex.h"
+#include "core/render/photon_grid.h"
 
 namespace prism {
 

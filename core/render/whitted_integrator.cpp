@@ -1,7 +1,7 @@
-#include "render/whitted_integrator.h"
+#include "core/render/whitted_integrator.h"
 
-#include "render/direct_light.h"
-#include "render/medium_stack.h"
+#include "core/render/direct_light.h"
+#include "core/render/medium_stack.h"
 
 namespace prism {
 

@@ -8,10 +8,10 @@
 // path's wavelengths into one trace each. Noise-free for delta lights, and a reference for
 // Fresnel scenes.
 
-#include "base/sampler.h"
-#include "render/path_integrator.h"
-#include "render/ray_counters.h"
-#include "render/world.h"
+#include "core/base/sampler.h"
+#include "core/render/path_integrator.h"
+#include "core/render/ray_counters.h"
+#include "core/render/world.h"
 
 namespace prism {
 

@@ -1,4 +1,4 @@
-#include "render/world.h"
+#include "core/render/world.h"
 
 #include <algorithm>
 #include <bit>
@@ -7,10 +7,10 @@
 
 #include "accel/closed_surface.h"
 #include "accel/triangle.h"
-#include "base/error.h"
-#include "base/first_equal.h"
-#include "base/frame.h"
-#include "base/rng.h"
+#include "core/base/error.h"
+#include "core/base/first_equal.h"
+#include "core/base/frame.h"
+#include "core/base/rng.h"
 #include "spectral/cie.h"
 #include "spectral/rgb_to_spectrum.h"
 
@@ -109,9 +109,9 @@ void World::add_enclosures() {
   }
   if (!any) return;
   for (const Instance& inst : scene_.instances)
-    enclosures_.push_back(side[inst.mesh] == 0 ? Enclosure{}
-                                               : Enclosure{transform_bounds(inst.to_world, bounds[inst.mesh]),
-                                                           side[inst.mesh]});
+    enclosures_.push_back(side[inst.mesh] == 0
+                              ? Enclosure{}
+                              : Enclosure{transform_bounds(inst.to_world, bounds[inst.mesh]), side[inst.mesh]});
 }
 
 void World::add_lights() {

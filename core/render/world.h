@@ -8,11 +8,11 @@
 #include <vector>
 
 #include "accel/accel.h"
-#include "render/interaction.h"
-#include "render/light_sampler.h"
-#include "render/lights.h"
-#include "scene/scene.h"
-#include "scene/scene_features.h"
+#include "core/render/interaction.h"
+#include "core/render/light_sampler.h"
+#include "core/render/lights.h"
+#include "core/scene/scene.h"
+#include "core/scene/scene_features.h"
 
 namespace prism {
 

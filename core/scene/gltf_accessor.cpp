@@ -1,8 +1,8 @@
-#include "scene/gltf_accessor.h"
+#include "core/scene/gltf_accessor.h"
 
 #include <cstring>
 
-#include "base/error.h"
+#include "core/base/error.h"
 
 namespace prism {
 

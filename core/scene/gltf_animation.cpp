@@ -1,11 +1,11 @@
-#include "scene/gltf_animation.h"
+#include "core/scene/gltf_animation.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "base/error.h"
-#include "base/log.h"
-#include "scene/gltf_accessor.h"
+#include "core/base/error.h"
+#include "core/base/log.h"
+#include "core/scene/gltf_accessor.h"
 
 namespace prism {
 

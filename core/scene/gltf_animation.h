@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "base/transform.h"
+#include "core/base/transform.h"
 
 namespace prism {
 

@@ -7,8 +7,8 @@
 
 #include <cstring>
 
-#include "base/error.h"
-#include "scene/gltf_compression.h"
+#include "core/base/error.h"
+#include "core/scene/gltf_compression.h"
 
 namespace prism {
 

@@ -1,15 +1,15 @@
-#include "scene/gltf_file.h"
+#include "core/scene/gltf_file.h"
 
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "base/checksum.h"
-#include "base/error.h"
-#include "base/log.h"
-#include "scene/gltf_compression.h"
-#include "scene/gltf_import.h"
+#include "core/base/checksum.h"
+#include "core/base/error.h"
+#include "core/base/log.h"
+#include "core/scene/gltf_compression.h"
+#include "core/scene/gltf_import.h"
 
 namespace prism {
 

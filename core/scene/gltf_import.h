@@ -19,12 +19,12 @@
 #include <string>
 #include <vector>
 
-#include "base/error.h"
-#include "scene/gltf_animation.h"
-#include "scene/gltf_loader.h"
-#include "scene/gltf_morph.h"
-#include "scene/gltf_skin.h"
-#include "scene/scene.h"
+#include "core/base/error.h"
+#include "core/scene/gltf_animation.h"
+#include "core/scene/gltf_loader.h"
+#include "core/scene/gltf_morph.h"
+#include "core/scene/gltf_skin.h"
+#include "core/scene/scene.h"
 
 namespace prism {
 

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "scene/gltf_accessor.h"
-#include "scene/gltf_import.h"
+#include "core/scene/gltf_accessor.h"
+#include "core/scene/gltf_import.h"
 
 namespace prism {
 

@@ -1,12 +1,12 @@
-#include "scene/gltf_loader.h"
+#include "core/scene/gltf_loader.h"
 
 #include <cmath>
 
-#include "base/log.h"
-#include "scene/gltf_compression.h"
-#include "scene/gltf_file.h"
-#include "scene/gltf_import.h"
-#include "scene/gltf_variants.h"
+#include "core/base/log.h"
+#include "core/scene/gltf_compression.h"
+#include "core/scene/gltf_file.h"
+#include "core/scene/gltf_import.h"
+#include "core/scene/gltf_variants.h"
 
 namespace prism {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene.h"
+#include "core/scene/scene.h"
 
 namespace prism {
 

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "base/log.h"
-#include "scene/gltf_import.h"
+#include "core/base/log.h"
+#include "core/scene/gltf_import.h"
 
 namespace prism {
 

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "base/log.h"
+#include "core/base/log.h"
+#include "core/scene/gltf_import.h"
 #include "materials/catalogue.h"
-#include "scene/gltf_import.h"
 
 namespace prism {
 

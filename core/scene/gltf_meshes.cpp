@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "base/log.h"
-#include "scene/gltf_accessor.h"
-#include "scene/gltf_import.h"
-#include "scene/gltf_variants.h"
+#include "core/base/log.h"
+#include "core/scene/gltf_accessor.h"
+#include "core/scene/gltf_import.h"
+#include "core/scene/gltf_variants.h"
 
 namespace prism {
 

@@ -5,8 +5,8 @@
 
 #include <meshoptimizer.h>
 
-#include "base/error.h"
-#include "scene/gltf_compression.h"
+#include "core/base/error.h"
+#include "core/scene/gltf_compression.h"
 
 namespace prism {
 

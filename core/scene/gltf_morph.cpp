@@ -1,7 +1,7 @@
-#include "scene/gltf_morph.h"
+#include "core/scene/gltf_morph.h"
 
-#include "base/error.h"
-#include "scene/gltf_accessor.h"
+#include "core/base/error.h"
+#include "core/scene/gltf_accessor.h"
 
 namespace prism {
 

@@ -1,9 +1,9 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 
-#include "base/error.h"
-#include "scene/gltf_compression.h"
-#include "scene/gltf_file.h"
+#include "core/base/error.h"
+#include "core/scene/gltf_compression.h"
+#include "core/scene/gltf_file.h"
 
 namespace prism {
 

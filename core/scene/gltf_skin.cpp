@@ -1,9 +1,9 @@
-#include "scene/gltf_skin.h"
+#include "core/scene/gltf_skin.h"
 
 #include <cmath>
 
-#include "base/error.h"
-#include "scene/gltf_accessor.h"
+#include "core/base/error.h"
+#include "core/scene/gltf_accessor.h"
 
 namespace prism {
 

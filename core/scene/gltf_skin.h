@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "base/transform.h"
-#include "scene/scene.h"
+#include "core/base/transform.h"
+#include "core/scene/scene.h"
 
 namespace prism {
 

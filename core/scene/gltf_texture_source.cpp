@@ -3,7 +3,7 @@
 // KTX2 or Basis Universal), so its textures fall back to their `source` PNG or JPEG, and a
 // texture without one is refused.
 
-#include "scene/gltf_import.h"
+#include "core/scene/gltf_import.h"
 
 namespace prism {
 

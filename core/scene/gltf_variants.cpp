@@ -1,6 +1,6 @@
-#include "scene/gltf_variants.h"
+#include "core/scene/gltf_variants.h"
 
-#include "base/error.h"
+#include "core/base/error.h"
 
 namespace prism {
 

@@ -9,9 +9,9 @@
 #include <type_traits>
 #include <vector>
 
-#include "base/bounds.h"
-#include "base/instance.h"
-#include "base/transform.h"
+#include "core/base/bounds.h"
+#include "core/base/instance.h"
+#include "core/base/transform.h"
 #include "materials/material.h"
 #include "spectral/spectrum.h"
 

@@ -1,4 +1,4 @@
-#include "scene/scene_features.h"
+#include "core/scene/scene_features.h"
 
 namespace prism {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "scene/scene.h"
+#include "core/scene/scene.h"
 
 namespace prism {
 

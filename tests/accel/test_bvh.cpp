@@ -13,10 +13,10 @@
 #include "accel/accel.h"
 #include "accel/bvh_traverse.h"
 #include "accel/triangle.h"
-#include "base/frame.h"
-#include "base/rng.h"
-#include "base/warp.h"
-#include "support/test_scenes.h"
+#include "core/base/frame.h"
+#include "core/base/rng.h"
+#include "core/base/warp.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

@@ -1,11 +1,10 @@
 // enclosed_side: which meshes are closed, and on which side of their normals the volume lies.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 
-#include <algorithm>
-
 #include "accel/closed_surface.h"
-#include "support/test_scenes.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

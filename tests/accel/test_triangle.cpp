@@ -5,8 +5,8 @@
 #include <catch2/catch.hpp>
 
 #include "accel/triangle.h"
-#include "base/rng.h"
-#include "base/warp.h"
+#include "core/base/rng.h"
+#include "core/base/warp.h"
 
 using namespace prism;
 

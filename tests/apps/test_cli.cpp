@@ -4,8 +4,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "render/image_output.h"
-#include "support/test_scenes.h"
+#include "core/render/image_output.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "render/image_output.h"
-#include "support/test_scenes.h"
+#include "core/render/image_output.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 namespace fs = std::filesystem;

@@ -9,9 +9,9 @@
 #include <cstring>
 #include <fstream>
 
-#include "render/image_output.h"
-#include "support/gltf_builder.h"
-#include "support/test_scenes.h"
+#include "core/render/image_output.h"
+#include "tests/support/gltf_builder.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

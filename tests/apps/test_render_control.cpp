@@ -19,9 +19,9 @@
 #include <sstream>
 #include <thread>
 
-#include "render/image_output.h"
+#include "core/render/image_output.h"
 #include "spectral/cie.h"
-#include "support/test_scenes.h"
+#include "tests/support/test_scenes.h"
 
 extern char** environ;
 

@@ -6,13 +6,13 @@
 #include <utility>
 #include <vector>
 
-#include "base/frame.h"
-#include "base/math.h"
-#include "base/rng.h"
-#include "base/sampler.h"
-#include "base/transform.h"
-#include "base/warp.h"
-#include "support/chi2.h"
+#include "core/base/frame.h"
+#include "core/base/math.h"
+#include "core/base/rng.h"
+#include "core/base/sampler.h"
+#include "core/base/transform.h"
+#include "core/base/warp.h"
+#include "tests/support/chi2.h"
 
 using namespace prism;
 

@@ -3,8 +3,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "base/distribution.h"
-#include "base/rng.h"
+#include "core/base/distribution.h"
+#include "core/base/rng.h"
 
 using namespace prism;
 

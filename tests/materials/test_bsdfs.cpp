@@ -1,13 +1,12 @@
 // BSDF lobes: energy (R + T = 1 for clear dielectrics), reciprocity, sampling against pdf.
 
+#include <catch2/catch.hpp>
 #include <limits>
 
-#include <catch2/catch.hpp>
-
-#include "base/rng.h"
-#include "base/warp.h"
+#include "core/base/rng.h"
+#include "core/base/warp.h"
 #include "materials/material.h"
-#include "support/chi2.h"
+#include "tests/support/chi2.h"
 
 using namespace prism;
 

@@ -11,10 +11,10 @@
 #include <catch2/catch.hpp>
 #include <functional>
 
-#include "base/rng.h"
+#include "core/base/rng.h"
 #include "materials/catalogue.h"
 #include "materials/material.h"
-#include "support/chi2.h"
+#include "tests/support/chi2.h"
 
 using namespace prism;
 
@@ -361,7 +361,8 @@ TEST_CASE("every sampled BSDF lobe follows its pdf (chi-square)") {
   }
 }
 
-TEST_CASE("the glTF base and its layers choose their lobe by u.x, not uc: a grid of u at any fixed uc gives the albedo") {
+TEST_CASE(
+    "the glTF base and its layers choose their lobe by u.x, not uc: a grid of u at any fixed uc gives the albedo") {
   // Half metal, half plastic: three lobes; under a clear coat and a sheen, two layers more. The
   // choice rescales u.x within the lobe's interval (within_lobe), so the points of a stratified
   // grid that choose each lobe still cover it evenly, whatever uc is (uc is left to the lobe's own
@@ -375,10 +376,9 @@ TEST_CASE("the glTF base and its layers choose their lobe by u.x, not uc: a grid
   layered.sheen = sheen({0.5f, 0.5f, 1}, 0.5f);
   SurfacePoint tilted;  // a coat normal map's tilt: the coat samples in a frame of its own
   tilted.coat_normal = normalize(Vec3f(0.3f, -0.2f, 1));
-  for (const Case& c :
-       {Case{"half-metallic gold", [&] { return bsdf_of(m); }},
-        Case{"half-metallic gold under a clear coat and a sheen", [&] { return bsdf_of(layered); }},
-        Case{"the same under a tilted clear coat", [&] { return bsdf_of(layered, 1, tilted); }}}) {
+  for (const Case& c : {Case{"half-metallic gold", [&] { return bsdf_of(m); }},
+                        Case{"half-metallic gold under a clear coat and a sheen", [&] { return bsdf_of(layered); }},
+                        Case{"the same under a tilted clear coat", [&] { return bsdf_of(layered, 1, tilted); }}}) {
     const Bsdf<N> b = c.make();
     Rng rng(41, 0);
     for (float cos_o : {0.9f, 0.4f}) {

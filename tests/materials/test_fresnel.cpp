@@ -3,8 +3,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "base/rng.h"
-#include "base/warp.h"
+#include "core/base/rng.h"
+#include "core/base/warp.h"
 #include "materials/catalogue.h"
 #include "materials/fresnel.h"
 

@@ -5,13 +5,14 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "base/rng.h"
+#include "core/base/rng.h"
 #include "materials/microfacet.h"
 #include "materials/specular_albedo.h"
 
 using namespace prism;
 
-TEST_CASE("a lobe's albedo curve gives the tables' E(μ) and E_avg at any α, η and μ, and the exact Fresnel when smooth") {
+TEST_CASE(
+    "a lobe's albedo curve gives the tables' E(μ) and E_avg at any α, η and μ, and the exact Fresnel when smooth") {
   const SpecularAlbedo& table = SpecularAlbedo::table();
   Rng rng(7, 0);
   for (const bool compensated : {false, true}) {
@@ -28,7 +29,8 @@ TEST_CASE("a lobe's albedo curve gives the tables' E(μ) and E_avg at any α, η
       CHECK(SpecularAlbedo::E(curve, mu) == Approx(at.e[0]).margin(1e-6));
       CHECK(at.white == Approx(table.white(mu, r)).margin(1e-6));
       CHECK(curve.average == Approx(table.average(r, lane, compensated)[0]).margin(1e-6));
-      if (TrowbridgeReitz::effectively_smooth(alpha)) CHECK(SpecularAlbedo::E(curve, mu) == fresnel_dielectric(mu, eta));
+      if (TrowbridgeReitz::effectively_smooth(alpha))
+        CHECK(SpecularAlbedo::E(curve, mu) == fresnel_dielectric(mu, eta));
     }
   }
 }

@@ -86,7 +86,9 @@ TEST_CASE("thin film: a quarter-wave film of index √n on glass is an anti-refl
   CHECK(thin_film_reflectance(1, lambda, 2 * d, 1, nf, float(n)) == Approx(0.04).margin(1e-6));
 }
 
-TEST_CASE("thin film: the build-time excess table holds the largest of each cell's corners, and bounds the film over its coupling") {
+TEST_CASE(
+    "thin film: the build-time excess table holds the largest of each cell's corners, and bounds the film over its "
+    "coupling") {
   using namespace albedo_tables;
   // Each cell holds the largest of the direct computation at its four corners.
   for (const auto& [a, b] : {std::pair{0, 0}, {10, 10}, {16, 10}, {33, 7}, {39, 39}, {5, 38}}) {

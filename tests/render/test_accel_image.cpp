@@ -6,9 +6,9 @@
 #include <catch2/catch.hpp>
 #include <cstring>
 
-#include "render/renderer.h"
-#include "scene/gltf_loader.h"
-#include "support/test_scenes.h"
+#include "core/render/renderer.h"
+#include "core/scene/gltf_loader.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

@@ -8,11 +8,11 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "base/log.h"
+#include "core/base/log.h"
+#include "core/render/error_estimate.h"
+#include "core/scene/gltf_loader.h"
 #include "materials/catalogue.h"
-#include "render/error_estimate.h"
-#include "scene/gltf_loader.h"
-#include "support/test_scenes.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

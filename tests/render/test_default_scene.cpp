@@ -8,10 +8,10 @@
 
 #include <catch2/catch.hpp>
 
-#include "base/log.h"
-#include "render/image_output.h"
-#include "scene/gltf_loader.h"
-#include "support/test_scenes.h"
+#include "core/base/log.h"
+#include "core/render/image_output.h"
+#include "core/scene/gltf_loader.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

@@ -9,11 +9,11 @@
 #include <fstream>
 #include <functional>
 
-#include "base/rng.h"
-#include "render/environment_map.h"
-#include "render/image_output.h"
-#include "support/chi2.h"
-#include "support/test_scenes.h"
+#include "core/base/rng.h"
+#include "core/render/environment_map.h"
+#include "core/render/image_output.h"
+#include "tests/support/chi2.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

@@ -5,9 +5,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "render/error_estimate.h"
-#include "scene/gltf_loader.h"
-#include "support/test_scenes.h"
+#include "core/render/error_estimate.h"
+#include "core/scene/gltf_loader.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

@@ -4,10 +4,10 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/render/path_integrator.h"
+#include "core/render/whitted_integrator.h"
 #include "materials/catalogue.h"
-#include "render/path_integrator.h"
-#include "render/whitted_integrator.h"
-#include "support/test_scenes.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

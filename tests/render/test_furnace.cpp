@@ -5,7 +5,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "support/test_scenes.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

@@ -6,10 +6,10 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "base/log.h"
-#include "render/camera.h"
-#include "scene/gltf_loader.h"
-#include "support/test_scenes.h"
+#include "core/base/log.h"
+#include "core/render/camera.h"
+#include "core/scene/gltf_loader.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

@@ -2,10 +2,10 @@
 
 #include <catch2/catch.hpp>
 
-#include "base/rng.h"
-#include "base/warp.h"
-#include "render/world.h"
-#include "support/test_scenes.h"
+#include "core/base/rng.h"
+#include "core/base/warp.h"
+#include "core/render/world.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 
@@ -48,9 +48,9 @@ TEST_CASE("World: a ray into a closed translucent object, ending beyond it, meet
       if (!si || si->instance != instance) continue;  // another object first, or out through the open one
       // A shadow ray from it to a point up to 20 m away, or to infinity.
       const Vec3f w = sample_uniform_sphere({rng.uniform(), rng.uniform()});
-      const Ray shadow = i % 3 == 0 ? si->spawn(w)
-                                    : spawn_ray_to(si->p, si->p_error, si->n, si->p + w * (20 * rng.uniform()),
-                                                   Vec3f(0, 0, 0), w);
+      const Ray shadow =
+          i % 3 == 0 ? si->spawn(w)
+                     : spawn_ray_to(si->p, si->p_error, si->n, si->p + w * (20 * rng.uniform()), Vec3f(0, 0, 0), w);
       ++tried;
       if (!world.meets_own_surface(*si, shadow)) continue;
       ++skipped;

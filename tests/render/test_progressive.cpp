@@ -6,12 +6,12 @@
 #include <cstring>
 #include <map>
 
+#include "core/render/checkpoint.h"
+#include "core/render/error_estimate.h"
+#include "core/render/pass_schedule.h"
+#include "core/scene/gltf_loader.h"
 #include "materials/catalogue.h"
-#include "render/checkpoint.h"
-#include "render/error_estimate.h"
-#include "render/pass_schedule.h"
-#include "scene/gltf_loader.h"
-#include "support/test_scenes.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

@@ -8,7 +8,7 @@
 #include <catch2/catch.hpp>
 #include <functional>
 
-#include "support/test_scenes.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "render/russian_roulette.h"
+#include "core/render/russian_roulette.h"
 
 using namespace prism;
 

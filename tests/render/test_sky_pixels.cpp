@@ -7,10 +7,10 @@
 
 #include <catch2/catch.hpp>
 
-#include "base/rng.h"
-#include "render/camera.h"
-#include "render/world.h"
-#include "support/test_scenes.h"
+#include "core/base/rng.h"
+#include "core/render/camera.h"
+#include "core/render/world.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

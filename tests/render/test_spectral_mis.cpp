@@ -6,9 +6,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "base/rng.h"
+#include "core/base/rng.h"
 #include "materials/dispersive_bsdf.h"
-#include "support/test_scenes.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 
@@ -77,7 +77,9 @@ TEST_CASE("spectral MIS at a rough dispersive interface: the hero's mean, less c
   }
 }
 
-TEST_CASE("spectral MIS through two rough dispersive interfaces in a row: the path's pdfs, not each vertex's, weigh the lanes") {
+TEST_CASE(
+    "spectral MIS through two rough dispersive interfaces in a row: the path's pdfs, not each vertex's, weigh the "
+    "lanes") {
   // Light from the sky through two rough interfaces (the second sees the first's sample from the
   // other side, as the far face of a slab would): every lane divided by the product of the p̄,
   // which must be the lanes' path pdfs averaged, (1/N) Σ_j p_j(ω1) p_j(ω2), against the hero

@@ -3,10 +3,10 @@
 
 #include <catch2/catch.hpp>
 
-#include "scene/gltf_loader.h"
+#include "core/scene/gltf_loader.h"
 #include "spectral/cie.h"
 #include "spectral/color_pipeline.h"
-#include "support/test_scenes.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

@@ -13,10 +13,10 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "base/log.h"
+#include "core/base/log.h"
+#include "core/scene/gltf_loader.h"
 #include "materials/catalogue.h"
-#include "scene/gltf_loader.h"
-#include "support/test_scenes.h"
+#include "tests/support/test_scenes.h"
 using namespace prism;
 static int env_int(const char* n, int d) {
   const char* s = std::getenv(n);

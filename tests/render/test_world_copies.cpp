@@ -4,8 +4,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "render/world.h"
-#include "support/test_scenes.h"
+#include "core/render/world.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

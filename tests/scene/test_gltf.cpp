@@ -5,13 +5,13 @@
 #include <cstring>
 #include <fstream>
 
-#include "base/error.h"
-#include "base/log.h"
-#include "scene/gltf_loader.h"
-#include "scene/scene_features.h"
+#include "core/base/error.h"
+#include "core/base/log.h"
+#include "core/scene/gltf_loader.h"
+#include "core/scene/scene_features.h"
 #include "spectral/cie.h"
-#include "support/gltf_builder.h"
-#include "support/test_scenes.h"
+#include "tests/support/gltf_builder.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 using test::base64;

@@ -4,10 +4,10 @@
 #include <catch2/catch.hpp>
 #include <fstream>
 
-#include "base/log.h"
-#include "scene/gltf_loader.h"
-#include "support/gltf_builder.h"
-#include "support/test_scenes.h"
+#include "core/base/log.h"
+#include "core/scene/gltf_loader.h"
+#include "tests/support/gltf_builder.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 

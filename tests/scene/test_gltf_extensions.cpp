@@ -11,10 +11,10 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "base/error.h"
-#include "base/log.h"
-#include "scene/gltf_loader.h"
-#include "support/test_scenes.h"
+#include "core/base/error.h"
+#include "core/base/log.h"
+#include "core/scene/gltf_loader.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 using Json = nlohmann::json;

@@ -14,9 +14,9 @@
 #include <cstdlib>
 #include <thread>
 
-#include "render/image_output.h"
-#include "support/gltf_builder.h"
-#include "support/test_scenes.h"
+#include "core/render/image_output.h"
+#include "tests/support/gltf_builder.h"
+#include "tests/support/test_scenes.h"
 
 using namespace prism;
 
@@ -84,8 +84,8 @@ TEST_CASE(
   setenv("SLURM_CONF", (cluster.dir / "slurm.conf").c_str(), 1);
 
   const auto single = [&](const std::string& name, const std::string& options) {
-    REQUIRE(test::run_prism(fmt::format("render {} {} -q -o \"{}\"", kCornell, options,
-                                        (dir / (name + ".exr")).string())) == 0);
+    REQUIRE(test::run_prism(
+                fmt::format("render {} {} -q -o \"{}\"", kCornell, options, (dir / (name + ".exr")).string())) == 0);
   };
   const auto farm = [&](const std::string& name, const std::string& options) {
     return fmt::format("\"{}\" farm slurm {} --parts 4 {} --out \"{}\"", PRISM_EXECUTABLE, kCornell, options,

@@ -3,8 +3,8 @@
 #include <catch2/catch.hpp>
 #include <limits>
 
-#include "base/error.h"
-#include "base/rng.h"
+#include "core/base/error.h"
+#include "core/base/rng.h"
 #include "spectral/cie.h"
 #include "spectral/color_pipeline.h"
 #include "spectral/wavelengths.h"

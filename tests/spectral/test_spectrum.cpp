@@ -2,11 +2,10 @@
 // exactly what the kind gives that wavelength alone.
 
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <vector>
 
-#include "base/rng.h"
+#include "core/base/rng.h"
 #include "spectral/spectrum.h"
 
 using namespace prism;

@@ -3,11 +3,11 @@
 
 #include <catch2/catch.hpp>
 
-#include "base/rng.h"
-#include "base/sampler.h"
+#include "core/base/rng.h"
+#include "core/base/sampler.h"
 #include "spectral/cie.h"
 #include "spectral/wavelengths.h"
-#include "support/chi2.h"
+#include "tests/support/chi2.h"
 
 using namespace prism;
 

@@ -1,11 +1,11 @@
-#include "support/chi2.h"
+#include "tests/support/chi2.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "base/frame.h"
-#include "base/rng.h"
+#include "core/base/frame.h"
+#include "core/base/rng.h"
 
 namespace prism::test {
 

@@ -7,7 +7,7 @@
 #include <functional>
 #include <optional>
 
-#include "base/vec.h"
+#include "core/base/vec.h"
 
 namespace prism::test {
 

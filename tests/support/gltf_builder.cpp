@@ -1,4 +1,4 @@
-#include "support/gltf_builder.h"
+#include "tests/support/gltf_builder.h"
 
 #include <fmt/format.h>
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "support/test_scenes.h"  // base64
+#include "tests/support/test_scenes.h"  // base64
 
 namespace prism::test {
 

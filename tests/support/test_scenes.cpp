@@ -1,4 +1,4 @@
-#include "support/test_scenes.h"
+#include "tests/support/test_scenes.h"
 
 #include <sys/wait.h>
 

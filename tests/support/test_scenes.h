@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "render/renderer.h"
-#include "scene/scene.h"
+#include "core/render/renderer.h"
+#include "core/scene/scene.h"
 
 namespace prism::test {
 
