@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "materials/diffuse_bsdf.h"
+#include "materials/layered_bsdf.h"
 #include "materials/pbr_bsdf.h"
 
 namespace prism {

@@ -49,6 +49,19 @@ inline float within_lobe(float u, float lo, float width) {
   return width > 0 ? std::clamp((u - lo) / width, 0.f, 0.99999994f) : 0.f;
 }
 
+// The end of a mixture's sample_f: a non-delta sample of one of its lobes takes the whole
+// mixture's f and pdf towards its direction (the mixture as eval finds it), or is dropped where
+// that pdf is 0. Every lobe's sample_f returns its own s in place (NRVO), so s is changed there.
+template <int N>
+void take_mixture(std::optional<BsdfSample<N>>& s, const BsdfEval<N>& mixture) {
+  if (!(mixture.pdf > 0)) {
+    s.reset();
+    return;
+  }
+  s->f = mixture.f;
+  s->pdf = mixture.pdf;
+}
+
 // One delta direction of a BSDF and the share of light it carries (f·|cos θ_i| with the delta
 // integrated out), for tracers that follow every specular branch.
 template <int N>

@@ -26,7 +26,7 @@
 #include <array>
 #include <optional>
 
-#include "materials/material.h"
+#include "materials/make_bsdf.h"
 
 namespace prism {
 

@@ -12,6 +12,8 @@
 #include <variant>
 #include <vector>
 
+#include "core/base/math.h"
+#include "spectral/sampled_spectrum.h"
 #include "spectral/spectrum.h"
 
 namespace prism {
@@ -63,5 +65,23 @@ bool is_dispersive(const IorModel& model);
 
 // Abbe number V_d = (n_d − 1) / (n_F − n_C) at the Fraunhofer d, F and C lines.
 float abbe_number(const IorModel& model);
+
+// Each lane's relative index η'_λ whose exact normal-incidence reflectance is that of η times c_λ
+// (at most 1): KHR_materials_specular's coloured F0, on η's side of 1. The index η ≥ 1 of
+// reflectance F0 = ((η − 1)/(η + 1))² is (1 + √F0)/(1 − √F0) (F0 = 1: η → ∞). Two loops over the
+// lanes, each run on all lanes at once (in one, GCC turns the clamp's constant ends into branches
+// and leaves the lanes one by one). The clamp's max with 0 repeats the one inside it, but GCC keeps
+// the loop vector code only with it.
+template <int N>
+SampledSpectrum<N> ior_with_scaled_f0(float eta, const SampledSpectrum<N>& c) {
+  const float f0 = sqr((eta - 1) / (eta + 1));
+  SampledSpectrum<N> root, scaled;
+  for (int i = 0; i < N; ++i) root[i] = std::sqrt(std::min(std::max(f0 * std::max(c[i], 0.f), 0.f), 0.9999f));
+  for (int i = 0; i < N; ++i) {
+    const float s = (1 + root[i]) / (1 - root[i]);
+    scaled[i] = eta < 1 ? 1 / s : s;
+  }
+  return scaled;
+}
 
 }  // namespace prism

@@ -13,7 +13,7 @@
 #include <cmath>
 #include <optional>
 
-#include "core/base/kept_per_thread.h"
+#include "core/base/per_thread_cache.h"
 #include "core/base/warp.h"
 #include "materials/bsdf_sample.h"
 #include "materials/sheen_albedo.h"
@@ -71,7 +71,7 @@ struct SheenRoughness {
   SheenAlbedo::Curve albedo;
 
   static SheenRoughness of(float alpha) {
-    return kept_per_thread(alpha, [](float a) {
+    return per_thread_cached(alpha, [](float a) {
       return SheenRoughness{CharlieSheen(a), SheenAlbedo::scale(a), SheenAlbedo::curve(a)};
     });
   }

@@ -1,6 +1,6 @@
 #include "materials/specular_albedo.h"
 
-#include "core/base/kept_per_thread.h"
+#include "core/base/per_thread_cache.h"
 #include "materials/albedo_tables.h"
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"
@@ -12,7 +12,7 @@ using namespace albedo_tables;
 SpecularAlbedo::Roughness SpecularAlbedo::roughness(float alpha) {
   // The lobes of a material (metal, dielectric, coat, the diffuse coupling) ask for the same few α
   // at every hit, a path's hits alternating between materials: the cube root costs ~100 instructions.
-  return kept_per_thread(alpha, [](float a) {
+  return per_thread_cached(alpha, [](float a) {
     const Lerp x = alpha_node(a);
     return Roughness{a, x.i, x.t};
   });
@@ -32,8 +32,8 @@ SpecularAlbedo::AlphaSlice SpecularAlbedo::slice_of(float alpha, bool compensate
 
 const SpecularAlbedo::AlphaSlice& SpecularAlbedo::alpha_slice(float alpha, bool compensated) {
   // A material's few α recur at every hit; one store for each of compensated or not.
-  return compensated ? kept_per_thread_ref<4>(alpha, [](float a) { return slice_of(a, true); })
-                     : kept_per_thread_ref<4>(alpha, [](float a) { return slice_of(a, false); });
+  return compensated ? per_thread_cached_ref<4>(alpha, [](float a) { return slice_of(a, true); })
+                     : per_thread_cached_ref<4>(alpha, [](float a) { return slice_of(a, false); });
 }
 
 const SpecularAlbedo& SpecularAlbedo::table() {

@@ -6,6 +6,7 @@
 #include "core/render/medium_stack.h"
 #include "core/render/path_vertex.h"
 #include "core/render/russian_roulette.h"
+#include "materials/make_bsdf.h"
 #include "spectral/cie.h"
 
 namespace prism {

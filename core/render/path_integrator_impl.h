@@ -11,7 +11,7 @@
 #include "core/render/path_integrator.h"
 #include "core/render/russian_roulette.h"
 #include "materials/dispersive_bsdf.h"
-#include "materials/last_bsdf.h"
+#include "materials/bsdf_cache.h"
 
 namespace prism {
 
@@ -74,7 +74,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
   BeerLambert<N> absorption;
   const PowerLightSampler& light_sampler = world.light_sampler();
   const PathSky<N> sky(world.environment(), lambda);
-  LastBsdf<N> last_bsdf;
+  BsdfCache<N> bsdf_cache;
 
   // `vertex` counts every surface met, `depth` those the path scattered at (not passed through):
   // each vertex has its own block of sampler dimensions, the depth limit counts bounces.
@@ -165,7 +165,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
       if constexpr (Dispersion && N > 1)
         if (disperses(material, front) && companions_alive(path_pdfs))
           return scatter(DispersiveBsdf<N>(material, si->at, lambda, front, path_pdfs));
-      return scatter(last_bsdf.of(material, si->at, lambda, front));
+      return scatter(bsdf_cache.of(material, si->at, lambda, front));
     }();
     if (passes) {
       path_pdfs = path_pdfs_before;

@@ -2,6 +2,7 @@
 
 #include "core/render/direct_light.h"
 #include "core/render/medium_stack.h"
+#include "materials/make_bsdf.h"
 
 namespace prism {
 

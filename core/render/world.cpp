@@ -11,6 +11,7 @@
 #include "core/base/first_equal.h"
 #include "core/base/frame.h"
 #include "core/base/rng.h"
+#include "materials/metal_fit.h"
 #include "spectral/cie.h"
 #include "spectral/rgb_to_spectrum.h"
 
@@ -74,7 +75,7 @@ World::World(const Scene& scene, const AccelOptions& accel)
   // The tables a render reads, loaded here rather than at the first hit inside the timed render.
   RgbToSpectrumTable::srgb();
   cie();
-  schlick_matched_edge_tints();  // the base-colour metals' table (~40 M instructions)
+  schlick_matched_edge_tints();  // the base-colour metals' table
   // Untextured colours, upsampled once.
   spectra_.resize(scene.materials.size());
   for (size_t i = 0; i < scene.materials.size(); ++i)

@@ -5,7 +5,7 @@
 
 #include "core/base/rng.h"
 #include "core/base/warp.h"
-#include "materials/material.h"
+#include "materials/make_bsdf.h"
 #include "tests/support/chi2.h"
 
 using namespace prism;

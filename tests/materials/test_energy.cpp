@@ -13,7 +13,7 @@
 
 #include "core/base/rng.h"
 #include "materials/catalogue.h"
-#include "materials/material.h"
+#include "materials/make_bsdf.h"
 #include "tests/support/chi2.h"
 
 using namespace prism;

@@ -7,6 +7,7 @@
 #include "core/render/path_integrator.h"
 #include "core/render/whitted_integrator.h"
 #include "materials/catalogue.h"
+#include "materials/make_bsdf.h"
 #include "tests/support/test_scenes.h"
 
 using namespace prism;

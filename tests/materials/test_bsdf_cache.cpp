@@ -1,4 +1,4 @@
-// LastBsdf: a path's next BSDF is the one make_bsdf would make there, whichever of make_bsdf's
+// BsdfCache: a path's next BSDF is the one make_bsdf would make there, whichever of make_bsdf's
 // inputs changed since the last point (material, texture, vertex colour, coat normal, front medium),
 // and a layered BSDF kept through a hit on another material; and PbrMaterial::textured(), its hint
 // that a material's inputs vary over the surface, and SurfaceInputs::textured, what it relies on.
@@ -6,7 +6,7 @@
 #include <catch2/catch.hpp>
 #include <memory>
 
-#include "materials/last_bsdf.h"
+#include "materials/bsdf_cache.h"
 
 using namespace prism;
 
@@ -63,14 +63,14 @@ bool same(const Bsdf<N>& a, const Bsdf<N>& b) {
   return true;
 }
 
-// After `before`, LastBsdf gives at `after` what make_bsdf makes there, and that differs from the
+// After `before`, BsdfCache gives at `after` what make_bsdf makes there, and that differs from the
 // BSDF at `before` (or the check could not tell a stale BSDF from a fresh one).
 void check_follows(const Material& m0, const SurfacePoint& before, const Dielectric* front0, const Material& m1,
                    const SurfacePoint& after, const Dielectric* front1) {
   const SampledWavelengths<N> lambda = wavelengths();
-  LastBsdf<N> last;
+  BsdfCache<N> last;
   const Bsdf<N> old = make_bsdf(m0, before, lambda, front0), fresh = make_bsdf(m1, after, lambda, front1);
-  REQUIRE(std::holds_alternative<LayeredBsdf<N>>(old));  // the kind LastBsdf keeps
+  REQUIRE(std::holds_alternative<LayeredBsdf<N>>(old));  // the kind BsdfCache keeps
   REQUIRE_FALSE(same(old, fresh));
   CHECK(same(last.of(m0, before, lambda, front0), old));
   CHECK(same(last.of(m1, after, lambda, front1), fresh));
@@ -78,7 +78,7 @@ void check_follows(const Material& m0, const SurfacePoint& before, const Dielect
 
 }  // namespace
 
-TEST_CASE("LastBsdf makes the BSDF again when any of make_bsdf's inputs changes") {
+TEST_CASE("BsdfCache makes the BSDF again when any of make_bsdf's inputs changes") {
   const Material plain{"layered", layered(), {}, false};
   PbrMaterial textured_pbr = layered();
   textured_pbr.base_color = {1, 1, 1};
@@ -119,19 +119,19 @@ TEST_CASE("LastBsdf makes the BSDF again when any of make_bsdf's inputs changes"
 }
 
 TEST_CASE(
-    "LastBsdf's kept BSDF, its caches filled from other directions, is the one make_bsdf makes at the next point") {
+    "BsdfCache's kept BSDF, its caches filled from other directions, is the one make_bsdf makes at the next point") {
   // An untextured material at new texture coordinates: the key is equal, so the BSDF is kept, with
   // what its caches (E(μ_o) and the like) hold from the directions it was evaluated from before.
   const SampledWavelengths<N> lambda = wavelengths();
   const Material plain{"layered", layered(), {}, false};
-  LastBsdf<N> last;
+  BsdfCache<N> last;
   const Bsdf<N>& first = last.of(plain, point(0.25f), lambda, nullptr);
   REQUIRE(std::holds_alternative<LayeredBsdf<N>>(first));
   bsdf_eval(first, normalize(Vec3f(0.7f, -0.2f, 0.4f)), normalize(Vec3f(0.1f, 0.2f, 0.9f)));
   CHECK(same(last.of(plain, point(0.75f), lambda, nullptr), make_bsdf(plain, point(0.75f), lambda, nullptr)));
 }
 
-TEST_CASE("LastBsdf keeps a layered BSDF through a hit on another material") {
+TEST_CASE("BsdfCache keeps a layered BSDF through a hit on another material") {
   // A path from a sphere to the floor and back: the floor's BSDF is made beside the kept one, which
   // is returned again (the same object, not made again) and is still the one make_bsdf makes. (A
   // first layered material puts the kept one in the place a BSDF made again would not take.)
@@ -140,7 +140,7 @@ TEST_CASE("LastBsdf keeps a layered BSDF through a hit on another material") {
   thicker.iridescence->thickness_max = 400;
   const Material plain{"layered", layered(), {}, false}, other{"layered, thicker film", thicker, {}, false};
   const Material diffuse{"diffuse", DiffuseMaterial{ConstantSpectrum{0.5f}}, {}, false};
-  LastBsdf<N> last;
+  BsdfCache<N> last;
   last.of(other, point(0.25f), lambda, nullptr);
   const Bsdf<N>& first = last.of(plain, point(0.25f), lambda, nullptr);
   REQUIRE(std::holds_alternative<LayeredBsdf<N>>(first));
@@ -153,8 +153,8 @@ TEST_CASE("LastBsdf keeps a layered BSDF through a hit on another material") {
 TEST_CASE("PbrMaterial::textured names every texture whose texels reach the inputs") {
   // Each texture slot alone, with a texture whose halves differ in every channel (G = 0 on the
   // right: a thin wall for the thickness texture). The inputs at the two halves differ, and
-  // textured() must say so (LastBsdf would otherwise compare them in vain), and so must the inputs
-  // (LastBsdf takes inputs read from no texture to be the same at every point).
+  // textured() must say so (BsdfCache would otherwise compare them in vain), and so must the inputs
+  // (BsdfCache takes inputs read from no texture to be the same at every point).
   Texture t;
   t.image = std::make_shared<Image>(2, 1, std::vector<uint8_t>{255, 255, 255, 255, 30, 0, 90, 0});
   t.nearest = true;

@@ -1,13 +1,14 @@
 #pragma once
-// The BSDF of a path's last scattering point, made again only where the next point's would differ:
-// a path inside a closed translucent object (diffuse transmission) meets the same untextured
-// material hit after hit, and a layered BSDF (LayeredBsdf) costs about as much to build as to
-// sample. The others, and those of textured materials, are made at every point (cheaper than
-// comparing), beside the kept one, which stays for a later hit on its material (a path from a
-// sphere to the floor and back). What is compared is all that make_bsdf reads but the
-// wavelengths: the material, the front medium, the material's inputs at the point and the point's
-// other attributes (make_bsdf reads the texture coordinates only through the inputs). For one
-// path, whose wavelengths do not change between calls.
+// BsdfCache: a cache of the BSDFs one path makes, so that a point whose BSDF would be the same as
+// one already made reuses it instead of making it again. A path inside a closed translucent object
+// (diffuse transmission) meets the same untextured material hit after hit, and a layered BSDF
+// (LayeredBsdf) costs about as much to make as to sample. Only layered BSDFs are kept; the others,
+// and those of textured materials, are made at every point (cheaper than comparing), beside the
+// kept one, which stays for a later hit on its material (a path from a sphere to the floor and
+// back). The key is everything make_bsdf reads but the wavelengths: the material, the front
+// medium, the material's inputs at the point and the point's other attributes (make_bsdf reads the
+// texture coordinates only through the inputs). One cache per path, whose wavelengths do not
+// change between calls.
 
 #include <cstddef>
 #include <new>
@@ -15,21 +16,22 @@
 #include <type_traits>
 
 #include "materials/bsdf.h"
-#include "materials/material.h"
+#include "materials/make_bsdf.h"
 
 namespace prism {
 
 template <int N>
-class LastBsdf {
+class BsdfCache {
  public:
-  LastBsdf() = default;
-  LastBsdf(const LastBsdf&) = delete;  // the BSDFs returned are in storage_
-  LastBsdf& operator=(const LastBsdf&) = delete;
+  BsdfCache() = default;
+  BsdfCache(const BsdfCache&) = delete;  // the BSDFs returned are in storage_
+  BsdfCache& operator=(const BsdfCache&) = delete;
 
-  // Inlined into the path's loop; the comparison, which only a layered material met again needs,
-  // stays out of line (same_point), so that GCC's inlining budget goes to the rest of the loop
-  // (README, twelfth stop). The kept point's inputs are found only then: most layered hits are
-  // not followed by another on the same material, and would pay for their inputs twice.
+  // The BSDF of m at `at`: the kept one when make_bsdf would make the same, else a new one. Inlined
+  // into the path's loop; the comparison, which only a layered material met again needs, stays out
+  // of line (same_point), so that the compiler's inlining budget goes to the rest of the loop. The
+  // kept point's inputs are found only then: most layered hits are not followed by another on the
+  // same material, and would pay for their inputs twice.
   [[gnu::always_inline]] const Bsdf<N>& of(const Material& m, const SurfacePoint& at,
                                            const SampledWavelengths<N>& lambda, const Dielectric* front) {
     if (kept_ && kept_->material == &m && kept_->front == front && same_point(at)) return *kept_bsdf();

@@ -11,7 +11,7 @@
 namespace prism {
 
 template <class Value, int Kept>
-struct KeptPerThread {
+struct PerThreadCache {
   std::array<float, Kept> keys;
   std::array<std::optional<Value>, Kept> values{};
   int next = 0;
@@ -38,12 +38,12 @@ struct KeptPerThread {
 // compute must be a function of the key alone (a lambda without captures), giving the same for −0
 // as for +0 (equal keys). NaN keys are never found, so always computed (the build has no
 // -ffinite-math-only, which would break the NaN marking an empty place).
-// kept_per_thread_ref returns the kept value itself, valid until the next call with the same
+// per_thread_cached_ref returns the kept value itself, valid until the next call with the same
 // compute in this thread (for values too large to copy at each call).
 template <int Kept = 8, class Compute>
-const auto& kept_per_thread_ref(float key, const Compute& compute) {
-  static_assert(std::is_empty_v<Compute>, "kept_per_thread: compute must depend on the key alone");
-  using Store = KeptPerThread<decltype(compute(key)), Kept>;
+const auto& per_thread_cached_ref(float key, const Compute& compute) {
+  static_assert(std::is_empty_v<Compute>, "per_thread_cached: compute must depend on the key alone");
+  using Store = PerThreadCache<decltype(compute(key)), Kept>;
   // Initialised as a constant, so that no guard is tested at each call; one store per Compute type.
   constinit thread_local Store kept{Store::none};
   for (int i = 0; i < Kept; ++i)
@@ -51,8 +51,8 @@ const auto& kept_per_thread_ref(float key, const Compute& compute) {
   return kept.keep(key, compute);
 }
 template <int Kept = 8, class Compute>
-auto kept_per_thread(float key, const Compute& compute) {
-  return kept_per_thread_ref<Kept>(key, compute);
+auto per_thread_cached(float key, const Compute& compute) {
+  return per_thread_cached_ref<Kept>(key, compute);
 }
 
 }  // namespace prism
