@@ -46,11 +46,11 @@ std::vector<Configuration> configurations(const ConvergeArgs& args) {
     std::vector<Configuration> c;
     for (const std::string& name : args.integrators) {
       c.push_back({name, base});
-      c.back().options.integrator = integrator_kinds().at(name);
+      c.back().options.integrator = find_integrator(name)->kind;
     }
     return c;
   }
-  std::vector<Configuration> c(8, {"", base});
+  std::vector<Configuration> c(5, {"", base});
   c[0].name = "path, 8 wavelengths, NEE+MIS, Sobol";
   c[1].name = "1 wavelength per path";
   c[1].options.wavelengths = 1;
@@ -60,12 +60,11 @@ std::vector<Configuration> configurations(const ConvergeArgs& args) {
   c[3].options.path.next_event = false;
   c[4].name = "independent sampler";
   c[4].options.sampler = SamplerKind::independent;
-  c[5].name = "whitted";
-  c[5].options.integrator = IntegratorKind::whitted;
-  c[6].name = "bdpt";
-  c[6].options.integrator = IntegratorKind::bdpt;
-  c[7].name = "vcm";
-  c[7].options.integrator = IntegratorKind::vcm;
+  for (const Integrator& i : integrators())  // and every other integrator that renders images
+    if (i.kind != base.integrator && !i.check_only) {
+      c.push_back({std::string(i.name), base});
+      c.back().options.integrator = i.kind;
+    }
   return c;
 }
 
@@ -108,7 +107,7 @@ std::vector<float> reference_image(const ConvergeArgs& args, const PreparedScene
     return ref.rgb;
   }
   RenderOptions options = configurations(args)[0].options;
-  options.integrator = integrator_kinds().at(args.reference_integrator);
+  options.integrator = find_integrator(args.reference_integrator)->kind;
   options.spp = args.reference_spp;
   options.progress = true;
   options.seed = args.seed + 1;  // independent of the series' noise
@@ -288,14 +287,14 @@ void add_converge_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")->default_val(0);
   cmd->add_option("--integrators", args->integrators,
-                  "Compare these integrators (comma-separated: path, bdpt, vcm, light, whitted) instead of the "
+                  "Compare these integrators (comma-separated names, e.g. path,bdpt,vcm) instead of the "
                   "baseline and its variations")
       ->delimiter(',')
-      ->check(CLI::IsMember(integrator_kinds()));
+      ->check(integrator_validator(false));
   cmd->add_option("--reference-integrator", args->reference_integrator,
                   "Integrator of a reference this command renders (vcm for caustics)")
       ->default_val("path")
-      ->check(CLI::IsMember(integrator_kinds()));
+      ->check(integrator_validator(false));
   cmd->add_option("--seconds", args->seconds,
                   "Equal time: render each configuration this many seconds and compare the errors")
       ->check(CLI::PositiveNumber);

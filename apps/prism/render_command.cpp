@@ -30,6 +30,7 @@ namespace {
 struct RenderArgs {
   SceneArgs scene;
   std::string output, preview, colorspace = ColorPipeline::kDefaultOutput, aovs, spectral_bins, samples, crop;
+  std::string integrator = "auto";
   bool half = false, quiet = false, verbose = false, resume = false;
   double checkpoint = 0;
   std::string frames;  // "A:B"
@@ -89,7 +90,7 @@ std::string fingerprint(const RenderArgs& args, const Scene& scene, const Camera
       "energy-compensation={} gltf-scene={} variant={} animation={}",
       scene.source.filename().string(), scene.source_hash, time ? fmt::format("{}", *time) : "-", s.env,
       std::filesystem::path(s.env_map).filename().string(), env_map ? env_map->hash : 0, s.env_rotate, s.env_scale,
-      s.camera, camera.hash(), camera.width(), camera.height(), integrator_name(o.integrator), o.merge_radius, o.seed,
+      s.camera, camera.hash(), camera.width(), camera.height(), integrator(o.integrator).name, o.merge_radius, o.seed,
       sampler_name(o.sampler), o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf", o.noise_threshold,
       o.aovs, o.spectral_bins.to_string(), s.energy_compensation, s.gltf.scene ? fmt::format("{}", *s.gltf.scene) : "-",
       s.gltf.variant, s.gltf.animation);
@@ -147,6 +148,7 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
   const bool part = !args.samples.empty() || !args.crop.empty();
   const std::filesystem::path checkpoint = output + ".checkpoint";
 
+  options.integrator = resolve_integrator(args.integrator, *prepared.world, options);
   const Camera& camera = *prepared.camera;
   const std::string print = fingerprint(args, prepared.gltf->scene(), camera, options, time);
   std::optional<RenderState> resume;
@@ -201,7 +203,7 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
   image.metadata = {
       {"software", std::string("Prism " PRISM_VERSION)},
       {"prism.scene", args.scene.scene},
-      {"prism.integrator", std::string(integrator_name(options.integrator))},
+      {"prism.integrator", std::string(integrator(options.integrator).name)},
       {"prism.sampler", std::string(sampler_name(options.sampler))},
       {"prism.lightSampling", std::string(options.path.next_event ? "mis" : "bsdf")},
       {"prism.spp", int(counts.max)},
@@ -305,7 +307,7 @@ void add_render_command(CLI::App& app) {
                   "Render the animation's frames A to B (A:B) at --fps, loading the file once")
       ->excludes("--time");
   cmd->add_option("--fps", args->fps, "Frames per second of --frames: frame N is at N / fps seconds")->default_val(24);
-  add_render_options(cmd, args->options);
+  add_render_options(cmd, args->options, args->integrator);
   cmd->add_option("--noise-threshold", args->options.noise_threshold,
                   "Adaptive sampling: a pixel stops when its estimated error is below T (README); --spp is then "
                   "the maximum")

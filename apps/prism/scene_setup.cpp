@@ -80,20 +80,32 @@ const CLI::Validator& seed_value() {
   return v;
 }
 
-const std::map<std::string, IntegratorKind>& integrator_kinds() {
-  static const std::map<std::string, IntegratorKind> kinds{{"path", IntegratorKind::path},
-                                                           {"bdpt", IntegratorKind::bdpt},
-                                                           {"vcm", IntegratorKind::vcm},
-                                                           {"light", IntegratorKind::light},
-                                                           {"whitted", IntegratorKind::whitted}};
-  return kinds;
+CLI::Validator integrator_validator(bool automatic) {
+  return CLI::Validator(
+      [automatic](std::string& name) -> std::string {
+        if ((automatic && name == "auto") || find_integrator(name)) return {};
+        return fmt::format("unknown integrator '{}': choose from {}{}", name, automatic ? "auto, " : "",
+                           integrator_names());
+      },
+      "INTEGRATOR");
 }
 
-const char* integrator_name(IntegratorKind kind) {
-  for (const auto& [name, k] : integrator_kinds())
-    if (k == kind) return name.c_str();
-  return "?";
+IntegratorKind resolve_integrator(const std::string& name, const World& world, const RenderOptions& options) {
+  if (name != "auto") return find_integrator(name)->kind;
+  // A crop window is a part of a whole render, whose parts must all choose alike: it does not
+  // change the choice, and a tile of an integrator that renders the whole frame at once is refused.
+  const bool per_pixel = options.noise_threshold > 0 || options.spectral_bins.count() > 0;
+  const IntegratorChoice choice = choose_integrator(world.features(), per_pixel);
+  const Integrator& chosen = integrator(choice.kind);
+  if (!options.crop.empty() && !chosen.per_pixel())
+    fail(
+        "--crop: for this scene --integrator auto chooses {} ({}), which renders the whole frame at once; render "
+        "tiles with --integrator path",
+        chosen.name, choice.reason);
+  log::info("integrator: {} (auto: {})", chosen.name, choice.reason);
+  return choice.kind;
 }
+
 const char* sampler_name(SamplerKind kind) { return kind == SamplerKind::independent ? "independent" : "sobol"; }
 
 void add_scene_options(CLI::App* cmd, SceneArgs& args) {
@@ -137,7 +149,7 @@ void add_gltf_options(CLI::App* cmd, GltfOptions& options) {
                 "Let the scene's URIs name files outside its folder (off: such files are refused)");
 }
 
-void add_render_options(CLI::App* cmd, RenderOptions& options) {
+void add_render_options(CLI::App* cmd, RenderOptions& options, std::string& integrator) {
   cmd->add_option("--spp", options.spp, "Samples per pixel")->default_val(16)->check(positive_count());
   cmd->add_option("--seed", options.seed, "Random seed: the same seed gives the same image")
       ->default_val(0)
@@ -148,11 +160,11 @@ void add_render_options(CLI::App* cmd, RenderOptions& options) {
   cmd->add_option("--max-depth", options.path.max_depth, "Maximum path length in bounces")
       ->default_val(16)
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--integrator", options.integrator,
-                  "path: unidirectional path tracing; bdpt: bidirectional path tracing; vcm: bdpt with vertex "
-                  "merging; light: light tracing alone; whitted: recursive Fresnel splitting")
-      ->transform(CLI::CheckedTransformer(integrator_kinds()))
-      ->default_str("path");
+  std::string help =
+      "auto: the one the scene needs (vcm for caustics through closed glass lit from inside the scene, "
+      "else path)";
+  for (const Integrator& i : integrators()) help += fmt::format("; {}: {}", i.name, i.description);
+  cmd->add_option("--integrator", integrator, help)->check(integrator_validator(true))->default_val("auto");
   cmd->add_option("--merge-radius", options.merge_radius,
                   "vcm: initial photon merging radius in scene units (default: 0.005 x the scene's bounding radius)")
       ->check(CLI::PositiveNumber);

@@ -1,5 +1,4 @@
 #pragma once
-#include <map>
 // What the commands that render a scene share (render, converge): their command-line options,
 // and loading a scene with its environment, camera and world.
 
@@ -39,8 +38,16 @@ void add_scene_options(CLI::App* cmd, SceneArgs& args);
 // --scene, --variant, --time, --animation and --allow-external-paths.
 void add_gltf_options(CLI::App* cmd, GltfOptions& options);
 
-// --spp, --seed, --threads, --max-depth, --integrator, --wavelengths, --sampler, --light-sampling.
-void add_render_options(CLI::App* cmd, RenderOptions& options);
+// --spp, --seed, --threads, --max-depth, --integrator (its name, or "auto": resolve_integrator), --merge-radius,
+// --wavelengths, --sampler, --light-sampling.
+void add_render_options(CLI::App* cmd, RenderOptions& options, std::string& integrator);
+
+// The integrator named on the command line, or for "auto" the one the world's scene needs
+// (choose_integrator), for a render with these options; the choice is logged.
+IntegratorKind resolve_integrator(const std::string& name, const World& world, const RenderOptions& options);
+
+// A validator of integrator names (the table's; with `automatic`, "auto" too).
+CLI::Validator integrator_validator(bool automatic);
 
 // A scene ready to render. The world refers to the scene, so both live behind pointers.
 struct PreparedScene {
@@ -58,9 +65,6 @@ PreparedScene prepare_scene(const SceneArgs& args, bool keep_file = false);
 // something moved or the world was not built yet; returns whether it did.
 bool pose_scene(PreparedScene& prepared, const SceneArgs& args, double seconds);
 
-const char* integrator_name(IntegratorKind kind);
-// The --integrator names.
-const std::map<std::string, IntegratorKind>& integrator_kinds();
 const char* sampler_name(SamplerKind kind);
 
 }  // namespace prism

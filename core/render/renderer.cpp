@@ -10,86 +10,30 @@
 #include "core/base/parallel.h"
 #include "core/base/progress.h"
 #include "core/render/adaptive_sampling.h"
-#include "core/render/bdpt.h"
+#include "core/render/camera_sample.h"
 #include "core/render/error_estimate.h"
 #include "core/render/pass_schedule.h"
-#include "core/render/whitted_integrator.h"
+#include "core/render/sky.h"
+#include "core/render/tile_grid.h"
 #include "spectral/cie.h"
 
 namespace prism {
 
 namespace {
 
-constexpr int kTileSize = 16;
-// The frame cut into squares of kTileSize pixels (the last row and column cut short), numbered
-// row by row: the unit of parallel work.
-struct TileGrid {
-  int width, height, across, down;
-  explicit TileGrid(const Camera& camera)
-      : width(camera.width()),
-        height(camera.height()),
-        across((width + kTileSize - 1) / kTileSize),
-        down((height + kTileSize - 1) / kTileSize) {}
-  int64_t count() const { return int64_t(across) * down; }
-  struct Tile {
-    int x0, y0, x1, y1;  // its pixels x0 ≤ x < x1, y0 ≤ y < y1
-  };
-  Tile operator[](int64_t t) const {
-    const int x0 = int(t % across) * kTileSize, y0 = int(t / across) * kTileSize;
-    return {x0, y0, std::min(x0 + kTileSize, width), std::min(y0 + kTileSize, height)};
-  }
-};
 // A pixel's camera rays are made up to this many at once before any is traced: each waits on a
 // chain of divisions and a square root, which overlap across a batch, where one ray at a time
-// held up the start of every sample's traversal (about 6% of Box's time).
+// held up the start of every sample's traversal.
 constexpr int kRayBatch = 16;
 
+// The light paths of a pass, for the integrators that trace them: their scene of lights, the thread's
+// splat buffer, and for VCM the iteration's photons and wavelengths.
 template <int N>
-using RadianceFn = SampledSpectrum<N> (*)(const World&, Ray, const SampledWavelengths<N>&, Sampler&, const PathOptions&,
-                                          RayCounters&, const std::optional<SurfaceInteraction>* first);
-
-// The radiance estimator for these options, compiled for the scene's features.
-template <int N>
-RadianceFn<N> radiance_estimator(const World& world, const RenderOptions& options) {
-  if (options.integrator == IntegratorKind::whitted)
-    return [](const World& w, Ray r, const SampledWavelengths<N>& l, Sampler& s, const PathOptions& o, RayCounters& c,
-              const std::optional<SurfaceInteraction>*) {  // given no first hit (see sky_xyz)
-      return whitted_radiance<N>(w, r, l, s, o, c);
-    };
-  const PathFeatures f = options.features.value_or(path_features(world.features()));
-  if (f.media) return f.dispersion ? &path_radiance<N, true, true> : &path_radiance<N, true, false>;
-  return f.dispersion ? &path_radiance<N, false, true> : &path_radiance<N, false, false>;
-}
-
-// A camera ray that leaves the scene at once sees the constant environment, and the XYZ that the
-// path's wavelengths estimate of it has a known mean (sampled_xyz_mean): that mean, found once, is
-// such a sample's value, the estimate replaced by its expectation given the ray (Rao–Blackwell),
-// without the wavelengths' colour noise or their spectral work (the sky is 64–78% of the pixels
-// of Box, AttenuationTest and MetalRoughSpheres). For the path tracer, when no spectral bins are
-// kept (they need the lanes).
-std::optional<Xyz> sky_xyz(const World& world, const RenderOptions& options) {
-  const auto* sky = world.environment() ? std::get_if<EnvironmentLight>(world.environment()) : nullptr;
-  if (!sky || options.integrator != IntegratorKind::path || options.spectral_bins.count() > 0) return std::nullopt;
-  return sampled_xyz_mean(*sky->radiance);
-}
-
-// One camera sample: its wavelengths, the radiance they carry, and what the film keeps of it.
-template <int N>
-struct CameraSample {
-  SampledWavelengths<N> lambda;
-  SampledSpectrum<N> L;
-  Xyz xyz;
-};
-
-// The bidirectional estimator's scene, the thread's splat buffer, and for VCM the iteration's
-// photons and wavelengths (bidirectional renders only).
-template <int N>
-struct Splatting {
+struct PassLightPaths {
   const BdptScene* scene = nullptr;
   SplatBuffer* splats = nullptr;
   const VcmIteration<N>* vcm = nullptr;
   const SampledWavelengths<N>* lambda = nullptr;
-  uint64_t invalid = 0;
 };
 
 // The wavelengths every path of VCM iteration s carries (vcm.h), stratified over iterations.
@@ -130,77 +74,6 @@ VcmIteration<N> trace_iteration(const BdptScene& scene, const RenderOptions& opt
   return VcmIteration<N>(std::move(all_positions), std::move(all_photons), radius, scene.light_paths);
 }
 
-// The camera ray of sample s of a pixel: the sampler's first dimension jitters it in the pixel.
-Ray camera_ray(const Camera& camera, Sampler& sampler, Vec2i pixel, int s) {
-  sampler.start_sample(s);
-  const Vec2f jitter = sampler.get_2d();
-  return camera.generate_ray(float(pixel.x) + jitter.x, float(pixel.y) + jitter.y);
-}
-
-// The body of the render: a sample's camera ray (camera_ray) through the radiance estimator to
-// CIE XYZ, from the sampler's stream for (pixel, sample index, seed) alone, the sampler started at
-// the sample and past its jitter. With a sky (sky_xyz), the camera ray is traced here first, and
-// a ray that leaves the scene at once gives nothing (false): its value is the sky's. The sample is
-// written into `c`, the caller's: returned, it was copied there by wide loads of its xyz's narrow
-// stores, which x86 cannot forward (a stall per sample).
-template <int N>
-bool camera_sample(const World& world, const RenderOptions& options, RadianceFn<N> radiance,
-                   const std::optional<Xyz>& sky, Splatting<N>& bdpt, Sampler& sampler, const Ray& ray,
-                   RayCounters& rays, CameraSample<N>& c) {
-  const std::optional<SurfaceInteraction> first =
-      sky ? world.intersect(ray, true) : std::nullopt;  // as path_radiance would
-  if (sky && !first) {
-    ++rays.primary;
-    return false;
-  }
-  const Vec2f u_lambda = sampler.get_2d();  // the camera's second dimension, drawn only for a path that needs it
-  // (Made in place, as render_tile's camera rays are, for the same reason.)
-  ::new (&c.lambda) SampledWavelengths<N>(bdpt.lambda ? *bdpt.lambda : SampledWavelengths<N>::sample(u_lambda));
-  c.L = bdpt.scene ? bdpt_radiance<N>(*bdpt.scene, ray, c.lambda, sampler, options.path, bdpt.vcm, *bdpt.splats, rays,
-                                      bdpt.invalid)
-                   : radiance(world, ray, c.lambda, sampler, options.path, rays, sky ? &first : nullptr);
-  c.xyz = to_xyz(c.L, c.lambda);
-  return true;
-}
-
-// What the first surface along a camera ray shows: its albedo under D65 (as XYZ, converted like
-// the image), shading normal and distance.
-template <int N>
-void first_hit(const World& world, const Ray& ray, const SampledWavelengths<N>& lambda, FilmSample& out) {
-  const auto si = world.intersect(ray);
-  if (!si) return;
-  const Material& m = *si->material;
-  SampledSpectrum<N> albedo;
-  if (const auto* d = std::get_if<DiffuseMaterial>(&m.kind)) {
-    albedo = sample(d->reflectance, lambda);
-  } else {
-    const RgbAlbedoSpectrum base(std::get<PbrMaterial>(m.kind).inputs(si->at).base_color);
-    for (int i = 0; i < N; ++i) albedo[i] = base(lambda[i]);
-  }
-  for (int i = 0; i < N; ++i) albedo[i] *= cie().d65(lambda[i]);
-  out.albedo = to_xyz(albedo, lambda);
-  out.normal = si->ns;
-  out.depth = si->t;
-  out.hit = true;
-}
-
-// Pixels whose every camera ray leaves the scene at once: nothing in the accel can meet the rays
-// through the pixel (Camera::frustum, Accel::may_meet). With a sky (sky_xyz), their samples take
-// its value untraced (render_tile). Found tile by tile, then pixel by pixel in the tiles that may
-// meet something.
-std::vector<uint8_t> sky_pixels(const World& world, const Camera& camera) {
-  std::vector<uint8_t> sky(size_t(camera.width()) * camera.height(), 0);
-  const TileGrid grid(camera);
-  parallel_for(grid.count(), [&](int64_t t) {
-    const TileGrid::Tile tile = grid[t];
-    const bool whole_tile = !world.accel().may_meet(camera.frustum(tile.x0, tile.y0, tile.x1, tile.y1));
-    for (int y = tile.y0; y < tile.y1; ++y)
-      for (int x = tile.x0; x < tile.x1; ++x)
-        sky[size_t(y) * camera.width() + x] = whole_tile || !world.accel().may_meet(camera.frustum(x, y, x + 1, y + 1));
-  });
-  return sky;
-}
-
 struct PassStats {
   RayCounters rays;
   uint64_t samples = 0, invalid = 0;
@@ -209,8 +82,10 @@ struct PassStats {
 // Takes every active pixel of the tile from the samples it has to `end`.
 template <int N>
 void render_tile(const World& world, const Camera& camera, const RenderOptions& options, RadianceFn<N> radiance,
-                 const std::optional<Xyz>& sky, const std::vector<uint8_t>& sky_only, Splatting<N> bdpt,
+                 const std::optional<Xyz>& sky, const std::vector<uint8_t>& sky_only, const PassLightPaths<N>& light,
                  TileGrid::Tile tile, int end, const std::vector<uint8_t>& active, Film& film, PassStats& stats) {
+  uint64_t invalid_splats = 0;
+  const EstimateContext<N> context{world, options.path, light.scene, light.splats, light.vcm, &invalid_splats};
   Sampler sampler(options.seed, options.sampler);
   const bool first_hits = options.aovs & (kAovAlbedo | kAovNormal | kAovDepth);
   const int bins = film.bins().count();
@@ -226,7 +101,7 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
       if (!active.empty() && !active[p]) continue;
       // Each sample index once, or in the pixels the error estimate replicates twice (error_estimate.h;
       // not in bidirectional renders, whose light paths must be one per sample index).
-      const int replicates = !bdpt.scene && replicated_pixel({x, y}, options.seed) ? 2 : 1;
+      const int replicates = !light.scene && replicated_pixel({x, y}, options.seed) ? 2 : 1;
       const int64_t first = int64_t(options.sample_begin + film.samples(p)) * replicates;
       // The samples that saw the sky (camera_sample), per replicate: added together at the end.
       uint32_t sky_samples[2] = {0, 0};
@@ -249,7 +124,8 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
           for (int64_t k = k0; k < k1; ++k) {
             const int r = int(k % replicates);
             ++stats.samples;
-            if (!camera_sample<N>(world, options, radiance, sky, bdpt, samplers[k - k0], rays[k - k0], stats.rays, c)) {
+            if (!camera_sample<N>(context, radiance, light.lambda, sky, samplers[k - k0], rays[k - k0], stats.rays,
+                                  c)) {
               ++sky_samples[r];
               continue;
             }
@@ -265,25 +141,24 @@ void render_tile(const World& world, const Camera& camera, const RenderOptions& 
       for (int r = 0; r < 2; ++r)
         if (sky_samples[r] > 0 && !film.add_repeated(p, sky_fixed, sky_samples[r], r)) stats.invalid += sky_samples[r];
     }
-  stats.invalid += bdpt.invalid;
+  stats.invalid += invalid_splats;
 }
 
 template <int N>
 RenderResult render_with(const World& world, const Camera& camera, const RenderOptions& options,
                          const RenderControl& control, std::optional<RenderState> resume) {
-  const RadianceFn<N> radiance = radiance_estimator<N>(world, options);
-  const std::optional<Xyz> sky = sky_xyz(world, options);
+  const Integrator& integ = integrator(options.integrator);
+  const PathFeatures features = options.features.value_or(path_features(world.features()));
+  const RadianceFn<N> radiance = integ.radiance.make<N>(features);
+  const std::optional<Xyz> sky = sky_xyz(world, integ.first_hit, options.spectral_bins.count() > 0);
   const std::vector<uint8_t> sky_only = sky ? sky_pixels(world, camera) : std::vector<uint8_t>{};
-  const bool bidirectional =
-      options.integrator != IntegratorKind::path && options.integrator != IntegratorKind::whitted;
   std::optional<BdptScene> bdpt_scene;
   std::optional<ThreadSplats> splats;
-  if (bidirectional) {
-    bdpt_scene.emplace(world, camera, options.features.value_or(path_features(world.features())).media,
-                       options.integrator == IntegratorKind::light);
+  if (integ.light_paths) {
+    bdpt_scene.emplace(world, camera, features.media, integ.light_tracing_only);
     splats.emplace(camera.width(), camera.height());
   }
-  const uint32_t film_flags = options.aovs | (bidirectional ? kFilmSplats : 0u);
+  const uint32_t film_flags = options.aovs | (integ.light_paths ? kFilmSplats : 0u);
   RenderResult result{resume ? std::move(*resume)
                              : RenderState{Film(camera.width(), camera.height(), film_flags, options.spectral_bins)}};
   RenderState& state = result.state;
@@ -316,8 +191,9 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
     const auto render_tiles = [&](int to, const VcmIteration<N>* vcm, const SampledWavelengths<N>* lambda, bool last) {
       parallel_for(grid.count(), [&](int64_t tile) {
         PassStats ps;
-        const Splatting<N> bdpt{bdpt_scene ? &*bdpt_scene : nullptr, splats ? &splats->local() : nullptr, vcm, lambda};
-        render_tile<N>(world, camera, options, radiance, sky, sky_only, bdpt, grid[tile], to, active, state.film, ps);
+        const PassLightPaths<N> light{bdpt_scene ? &*bdpt_scene : nullptr, splats ? &splats->local() : nullptr, vcm,
+                                      lambda};
+        render_tile<N>(world, camera, options, radiance, sky, sky_only, light, grid[tile], to, active, state.film, ps);
         {
           std::lock_guard lock(stats_mutex);
           state.stats.rays += ps.rays;
@@ -327,7 +203,7 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
         if (last) progress.advance();
       });
     };
-    if (options.integrator == IntegratorKind::vcm) {
+    if (integ.photon_iterations) {
       // One VCM iteration per sample index: all light paths and their photons first.
       for (int s = options.sample_begin + int(state.film.samples(0)); s < end; ++s) {
         const SampledWavelengths<N> lambda = iteration_wavelengths<N>(options, s);
@@ -354,7 +230,7 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
       result.interrupted = true;
       break;
     }
-    // The limit counts the sessions before a resume too (their seconds are in the checkpoint).
+    // The limit counts the runs before a resume too (their seconds are in the checkpoint).
     if (options.time_limit > 0 && state.stats.seconds >= options.time_limit) {
       result.timed_out = true;
       break;
@@ -389,11 +265,12 @@ RenderResult render(const World& world, const Camera& camera, const RenderOption
          camera.height());
   if (options.noise_threshold > 0 && (options.sample_begin > 0 || !c.empty()))
     fail("adaptive sampling (a noise threshold) cannot be split into sample ranges or crop windows");
-  if (options.integrator != IntegratorKind::path && options.integrator != IntegratorKind::whitted &&
+  if (!integrator(options.integrator).per_pixel() &&
       (options.noise_threshold > 0 || !c.empty() || options.spectral_bins.count() > 0))
     fail(
-        "the bidirectional integrators splat light paths over the whole frame: it takes no noise threshold, crop "
-        "window or spectral bins");
+        "the {} integrator splats light paths over the whole frame: it takes no noise threshold, crop window or "
+        "spectral bins",
+        integrator(options.integrator).name);
   if (resume && (resume->film.width() != camera.width() || resume->film.height() != camera.height()))
     fail("the state to resume is {}x{}, the camera {}x{}", resume->film.width(), resume->film.height(), camera.width(),
          camera.height());

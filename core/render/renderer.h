@@ -14,13 +14,10 @@
 
 #include "core/render/camera.h"
 #include "core/render/film.h"
+#include "core/render/integrators.h"
 #include "core/render/path_integrator.h"
 
 namespace prism {
-
-// bdpt: bidirectional path tracing (bdpt.h); vcm: with vertex merging (vcm.h); light: the
-// light-tracing strategy alone (a check).
-enum class IntegratorKind { path, whitted, bdpt, vcm, light };
 
 // VCM's initial merging radius when none is given, as a fraction of the scene's bounding radius.
 constexpr float kMergeRadius = 0.005f;
@@ -42,7 +39,7 @@ struct RenderPart {
 };
 
 struct RenderOptions {
-  IntegratorKind integrator = IntegratorKind::path;
+  IntegratorKind integrator = IntegratorKind::path;  // a row of the table in integrators.h
   int spp = 16;                          // samples per pixel; with a noise threshold, the most any pixel takes
   int sample_begin = 0, sample_end = 0;  // a part of the render: sample indices [begin, end) (end 0: spp)
   PixelWindow crop;                      // a part of the render: these pixels only (empty: all)

@@ -20,9 +20,9 @@ namespace {
 const std::string kCornell = "\"" PRISM_SOURCE_DIR "/data/scenes/cornell.gltf\"";
 constexpr int kSpp = 7;
 
-std::string render_args(int threads, uint64_t seed = 5) {
-  return fmt::format("render {} --width 32 --spp {} --seed {} --threads {} --aov variance,albedo -q", kCornell, kSpp,
-                     seed, threads);
+std::string render_args(int threads, uint64_t seed = 5, const std::string& integrator = "path") {
+  return fmt::format("render {} --width 32 --spp {} --seed {} --threads {} --integrator {} --aov variance,albedo -q",
+                     kCornell, kSpp, seed, threads, integrator);
 }
 
 // The channels of an EXR image (by default all those render_args writes), as bytes.
@@ -40,11 +40,13 @@ std::vector<char> pixels(const std::filesystem::path& exr,
 
 // Renders the parts (extra arguments each) and merges them; returns the merge's exit code.
 int render_and_merge(const std::filesystem::path& dir, const std::vector<std::string>& parts, int threads,
-                     const std::filesystem::path& out, std::string* err = nullptr) {
+                     const std::filesystem::path& out, std::string* err = nullptr,
+                     const std::string& integrator = "path") {
   std::string files;
   for (size_t i = 0; i < parts.size(); ++i) {
     const std::filesystem::path part = dir / fmt::format("part{}.prism-part", i);
-    REQUIRE(test::run_prism(render_args(threads) + " " + parts[i] + " -o \"" + part.string() + "\"") == 0);
+    REQUIRE(test::run_prism(render_args(threads, 5, integrator) + " " + parts[i] + " -o \"" + part.string() + "\"") ==
+            0);
     files += " \"" + part.string() + "\"";
   }
   return test::run_prism("merge" + files + " -o \"" + out.string() + "\"", err);
@@ -79,6 +81,29 @@ TEST_CASE("merge: sample ranges and tiles merge bit-identical to the single rend
                              threads, merged) == 0);
     CHECK(pixels(merged) == expected);
   }
+}
+
+TEST_CASE("merge: a VCM render's sample ranges merge bit-identical to the single render; auto refuses its tiles",
+          "[cli][merge]") {
+  // The default scene's caustics make --integrator auto choose vcm, whose light paths splat over the
+  // whole frame: its parts are sample ranges, never tiles.
+  const auto dir = test::temp_dir("merge_vcm");
+  const std::filesystem::path single = dir / "single.exr";
+  REQUIRE(test::run_prism(render_args(2, 5, "auto") + " -o \"" + single.string() + "\"") == 0);
+  REQUIRE(test::run_prism(render_args(2, 5, "vcm") + " -o \"" + (dir / "vcm.exr").string() + "\"") == 0);
+  CHECK(pixels(dir / "vcm.exr") == pixels(single));
+  const std::vector<char> expected = pixels(single);
+  for (int n : {2, 3}) {
+    INFO(n << " sample ranges");
+    const std::filesystem::path merged = dir / "merged.exr";
+    REQUIRE(render_and_merge(dir, sample_ranges(n), 2, merged, nullptr, "auto") == 0);
+    CHECK(pixels(merged) == expected);
+  }
+  std::string err;
+  CHECK(test::run_prism(render_args(2, 5, "auto") + " --crop 0,0,16,16 -o \"" + (dir / "tile").string() + "\"", &err) ==
+        1);
+  CHECK(err.find("render tiles with --integrator path") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir / "tile"));
 }
 
 TEST_CASE("merge: refuses parts that do not make the render, and writes nothing", "[cli][merge]") {
