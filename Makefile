@@ -3,7 +3,7 @@
 #   make test     the same set-up, then the whole test suite
 #   make test-sanitize   the test suite built with AddressSanitizer + UBSan (in build-asan/)
 #   make fuzz     libFuzzer targets (clang, in build-fuzz/), each run FUZZ_SECONDS on a generated corpus
-#   make bench-rays   Prism's BVH against Embree, ray for ray (needs ../shared/tools/raybench built)
+#   make bench-rays   Prism's BVH against Embree, ray for ray (needs raybench built in the shared assets (PRISM_SHARED_DIR))
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 SPP ?= 64

@@ -105,8 +105,7 @@ class BvhBuilder {
   Bvh run(Range root, std::vector<uint32_t>& slots) {
     uint64_t root_ref = build(root, 0);
     // A tree that is one leaf (a small scene) still gets a node above it, whose box rays that
-    // miss the whole scene fail first, instead of testing every triangle (Box: 2 blocks, 12
-    // triangles, for each camera ray).
+    // miss the whole scene fail first, instead of testing every triangle.
     if (root_ref & kTempLeaf && root.size() > 0) {
       const uint32_t index = node_count_.fetch_add(1);
       TempNode& node = nodes_[index];

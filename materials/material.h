@@ -95,7 +95,8 @@ struct DiffuseTransmission {  // KHR_materials_diffuse_transmission: the diffuse
   std::optional<Texture> texture, color_texture;  // linear A × factor; sRGB RGB × color
 };
 
-// glTF's metallic–roughness material, interpreted physically (see pbr_bsdf.h and the README):
+// glTF's metallic–roughness material, interpreted physically (see materials/pbr_bsdf.h and
+// docs/design.md, "The glTF model"):
 // a metal (measured n, k, or coloured by the base colour) blended by `metallic` with a
 // dielectric interface over a Lambertian base, part of which transmits (`transmission`).
 struct PbrMaterial {

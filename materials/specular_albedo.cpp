@@ -11,7 +11,8 @@ using namespace albedo_tables;
 
 SpecularAlbedo::Roughness SpecularAlbedo::roughness(float alpha) {
   // The lobes of a material (metal, dielectric, coat, the diffuse coupling) ask for the same few α
-  // at every hit, a path's hits alternating between materials: the cube root costs ~100 instructions.
+  // at every hit, a path's hits alternating between materials, and finding α's node takes a cube
+  // root, which costs more than the look-up.
   return per_thread_cached(alpha, [](float a) {
     const Lerp x = alpha_node(a);
     return Roughness{a, x.i, x.t};

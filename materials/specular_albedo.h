@@ -154,7 +154,7 @@ class SpecularAlbedo {
  private:
   // E at every (μ, η) node for one α (the tables' α axis interpolated away), E_avg at every η
   // node, and the white lobe's E along μ: made once per α and thread (per_thread_cached_ref), for
-  // at_lanes, whose lanes span several η nodes (4.8 on average on lobes_all) at each of a BSDF's
+  // at_lanes, whose lanes span several η nodes at each of a BSDF's
   // few evaluations. A row holds one μ node's E at every η node, padded to a whole number of
   // vectors (8 floats).
   struct AlphaSlice {

@@ -8,9 +8,9 @@
 
 namespace prism {
 
-// Default wavelengths per path (hero + 7 stratified companions; Wilkie et al. 2014). Measured on
-// the shared assets with the Sobol sampler (tools/README.md): 8 instead of 4 cuts the colour
-// noise (Box's relative RMSE at 64 spp by 30%) for about 5% more time per sample.
+// Default wavelengths per path (hero + 7 stratified companions; Wilkie et al. 2014). 8 instead of 4
+// cuts the colour noise for little more time per sample, a better error per second
+// (docs/performance.md, "Sampling choices").
 inline constexpr int kDefaultWavelengths = 8;
 
 template <int N>

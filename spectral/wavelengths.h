@@ -42,10 +42,10 @@ inline float visible_wavelengths_pdf(float lambda) {
 }
 
 // atanh t = ½ ln((1 + t)/(1 − t)) for |t| < 1, inline and branch-free so that the loop over a
-// path's wavelengths vectorises (glibc's atanhf is slow, and logf is a call per lane: 10% of a
-// sample on simple scenes). ln x with x = m·2^k, m ∈ [√½, √2) from the bits (the reduction of
-// musl's logf), and ln m = 2 atanh z = 2(z + z³/3 + … + z¹¹/11), z = (m − 1)/(m + 1) ∈ ±0.172,
-// whose remainder is below 1e-11: as exact as float arithmetic (about an ulp).
+// path's wavelengths vectorises (glibc's atanhf is slow, and logf is a call per lane). ln x with
+// x = m·2^k, m ∈ [√½, √2) from the bits (the reduction of musl's logf), and
+// ln m = 2 atanh z = 2(z + z³/3 + … + z¹¹/11), z = (m − 1)/(m + 1) ∈ ±0.172, whose remainder is
+// below 1e-11: as exact as float arithmetic (about an ulp).
 inline float atanh_by_series(float t) {
   const uint32_t bits = std::bit_cast<uint32_t>((1.f + t) / (1.f - t)) + (0x3f800000u - 0x3f3504f3u);
   const float k = float(int(bits >> 23) - 0x7f);

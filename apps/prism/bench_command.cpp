@@ -1,8 +1,9 @@
-// `prism bench rays SCENE RAYS.bin`: traces raybench's ray files (shared/tools/raybench) with
-// Prism's own loader and acceleration structure, the same code the renderer uses, and times it
-// the way raybench times Embree, so that the two can be compared ray for ray on one machine:
-// T threads take chunks of 4096 consecutive rays from a shared counter; a pass is timed from
-// thread creation to join; the best and the median of R passes (after one warm-up) are reported.
+// `prism bench rays SCENE RAYS.bin`: traces raybench's ray files (tools/raybench in the shared
+// assets, PRISM_SHARED_DIR) with Prism's own loader and acceleration structure, the same code the
+// renderer uses, and times it the way raybench times Embree, so that the two can be compared ray
+// for ray on one machine: T threads take chunks of 4096 consecutive rays from a shared counter; a
+// pass is timed from thread creation to join; the best and the median of R passes (after one
+// warm-up) are reported.
 
 #include <algorithm>
 #include <atomic>

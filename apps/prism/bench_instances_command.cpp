@@ -2,7 +2,7 @@
 // (default 10,000), built in code, then made ready to render (World: accel and lights) and traced
 // by a few camera rays. Prints the build's seconds and memory: the scene's instance array, the
 // accel, and the process's peak resident set, so that instancing is seen to cost memory per
-// instance, not per triangle. The target: 10⁶ × 10k triangles in < 2 s and < 150 MB.
+// instance, not per triangle. The target: 10⁶ × 10k triangles in < 2 s and < 150 MB.
 
 #include <algorithm>
 #include <chrono>

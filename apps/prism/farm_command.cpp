@@ -198,7 +198,7 @@ void add_farm_command(CLI::App& app) {
   CLI::App* cmd = farm->add_subcommand(
       "slurm",
       "Render SCENE (or its animation's --frames) as a Slurm array job of --parts sample ranges per frame plus a "
-      "merge job (README: Slurm)");
+      "merge job (README: prism farm slurm)");
   cmd->add_option("scene", args->scene, "glTF 2.0 scene (.gltf or .glb), on the shared filesystem")->required();
   cmd->add_option("--parts", args->parts,
                   "Sample ranges per frame, one array task each (default 4; with --frames 1: a task per frame)")

@@ -1,6 +1,7 @@
 #pragma once
-// raybench's binary ray and hit files (shared/tools/raybench/README.md, "Binary formats"), so
-// that Prism and Embree trace the same rays and their answers can be compared ray for ray.
+// raybench's binary ray and hit files (tools/raybench/README.md in the shared assets,
+// PRISM_SHARED_DIR: "Binary formats"), so that Prism and Embree trace the same rays and their
+// answers can be compared ray for ray.
 // Little-endian: a 4-byte magic, uint32 version 1, uint64 count, then the records.
 
 #include <cstdint>

@@ -21,8 +21,8 @@ std::string_view bytes_of(const Array& a) {
   return {reinterpret_cast<const char*>(s.data()), s.size()};
 }
 
-// A hash of arrays' bytes, in order (std::hash of bytes: 12 ms for MetalRoughSpheres' 25 MB,
-// where FNV-1a took 150 ms).
+// A hash of arrays' bytes, in order (std::hash of bytes, which hashes a large mesh's arrays many
+// times faster than a byte-at-a-time FNV-1a).
 template <class... Array>
 uint64_t hash_bytes(const Array&... arrays) {
   uint64_t h = 0;

@@ -24,7 +24,7 @@ struct Ray {
 // surface along the geometric normal n to the side of direction w, then rounds away from the
 // surface, so that a ray leaving from it cannot re-hit that surface (pbrt-v4 §6.8.6). Always
 // inlined: a call costs about as much as its body, and GCC left it out of line in the path loop
-// whenever the loop's file ran out of inlining budget (README, thirteenth stop).
+// whenever the loop's file ran out of inlining budget.
 [[gnu::always_inline]] inline Vec3f offset_ray_origin(const Vec3f& p, const Vec3f& error, const Vec3f& n,
                                                       const Vec3f& w) {
   const float d = dot(abs(n), error);

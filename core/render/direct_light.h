@@ -41,9 +41,9 @@ std::optional<LightContribution<N>> light_contribution(const World& world, const
   if (wrong_side(si, sample->wi, transmission)) return std::nullopt;
   if (transmission && !si.material->transmits()) return std::nullopt;  // it only reflects
   // The shadow ray before the BSDF (as Mitsuba 3): a blocked sample then costs no evaluation, and
-  // 22–31% of light samples are blocked on the shared assets with occluders (36% on lobes_all,
-  // whose layered BSDFs cost more to evaluate than a shadow ray). One into the closed object it
-  // leaves, towards a light outside it, is blocked by that object without being traced.
+  // in a scene with occluders many light samples are blocked (a layered BSDF costs more to evaluate
+  // than a shadow ray). One into the closed object it leaves, towards a light outside it, is
+  // blocked by that object without being traced.
   if (world.meets_own_surface(si, sample->shadow_ray)) return std::nullopt;
   ++counters.shadow;
   sample->shadow_ray.skip_instance = si.skip_towards(sample->wi);

@@ -2,17 +2,17 @@
 // The error of a render, estimated from the render itself.
 //
 // The i.i.d. estimate of a pixel's variance, s²/n, overstates the error of Owen-scrambled samples
-// (they are negatively correlated: +44% to +63% in RMSE on the known-answer test scenes), and a
-// single scrambled net has no unbiased variance estimate of its own. Independently scrambled
-// replicates of the same net have one: their spread (Owen 1997, "Monte Carlo variance of scrambled
-// net quadrature"; L'Ecuyer & Lemieux 2002, "Recent advances in randomized quasi-Monte Carlo
-// methods", §6). Splitting every pixel's samples into two replicates would cost the image quality
-// (two nets of n/2 points are worse than one of n: +14% to +19% RMSE at equal spp on the Box
-// asset), so only a sparse random set S of pixels, one in 16, takes a second, independently
-// scrambled copy of its sample indices (sampler replicate 1); every other pixel keeps its whole
-// net. On S, replicate means A and B measure the true variance, E[(A − B)²] = Var A + Var B; its
-// ratio to the i.i.d. estimate of the same quantity (ratio estimation over a random sample, Cochran
-// 1977, "Sampling Techniques" §6),
+// (they are negatively correlated; docs/design.md, "The error estimate"), and a single scrambled
+// net has no unbiased variance estimate of its own. Independently scrambled replicates of the same
+// net have one: their spread (Owen 1997, "Monte Carlo variance of scrambled net quadrature";
+// L'Ecuyer & Lemieux 2002, "Recent advances in randomized quasi-Monte Carlo methods", §6).
+// Splitting every pixel's samples into two replicates would cost the image quality (two nets of
+// n/2 points are worse than one of n; docs/performance.md, "The error estimate's calibration"), so
+// only a sparse random set S of pixels, one in 16, takes a second, independently scrambled copy of
+// its sample indices (sampler replicate 1); every other pixel keeps its whole net. On S, replicate
+// means A and B measure the true variance, E[(A − B)²] = Var A + Var B; its ratio to the i.i.d.
+// estimate of the same quantity (ratio estimation over a random sample, Cochran 1977, "Sampling
+// Techniques" §6),
 //   κ_c = Σ_S (A_c − B_c)² / Σ_S s²_c (1/n_A + 1/n_B),   c = X, Y, Z,
 // calibrates every pixel's estimate: Var[mean of channel c] = κ_c · s²_c / n. κ is one number per
 // channel for the whole image, so the per-pixel estimates are right on average over the image, not

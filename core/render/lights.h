@@ -220,7 +220,7 @@ inline bool is_delta(const Light& light) {
 
 // A path's wavelengths are fixed when it starts, and a constant environment's radiance is the same
 // in every direction: the path tracer finds it once per path, not at every escaped ray and light
-// sample (it was 8% of a sample on Box). Holds nothing for the other lights.
+// sample. Holds nothing for the other lights.
 template <int N>
 class PathSky {
  public:

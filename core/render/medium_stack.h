@@ -1,5 +1,6 @@
 #pragma once
-// The closed dielectrics a path is inside, innermost last. Model (documented in the README):
+// The closed dielectrics a path is inside, innermost last. Model (docs/design.md, "The dielectric
+// interface"):
 // a refraction through a front face enters the material, one through a back face leaves it;
 // the index ratio at a surface is the material's over that of the medium on its front side,
 // and Beer–Lambert absorption applies inside the innermost material. Nested objects (a bubble

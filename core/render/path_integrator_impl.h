@@ -10,8 +10,8 @@
 #include "core/render/medium_stack.h"
 #include "core/render/path_integrator.h"
 #include "core/render/russian_roulette.h"
-#include "materials/dispersive_bsdf.h"
 #include "materials/bsdf_cache.h"
+#include "materials/dispersive_bsdf.h"
 
 namespace prism {
 
@@ -42,7 +42,7 @@ SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& s
 // f cos / pdf, averaged over the lanes), and beta takes its share over that probability: unbiased
 // for any such split (w is drawn first, the choice given w), and beta changes little whichever way
 // the path goes, where choosing the surface with probability α followed a dark surface α of the
-// time (GlassVaseFlowers' BLEND vase: 5x Cycles' variance). Light is sampled only where the path
+// time, with several times Cycles' variance. Light is sampled only where the path
 // stays, so staying must stay possible: without a sample to follow (w ≤ 0: none, or one of no
 // weight) the split is α to 1 − α, as if w were 1.
 template <int N>
@@ -121,7 +121,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     if (last) break;
     // Russian roulette from the third surface on, where the path meets it and before shading it
     // (Cycles' rule): a ray that leaves for the sky is never cut short, so the sky's light, most of
-    // an open scene's, carries no roulette noise (17–23% of the variance on the env-lit shared assets).
+    // an open scene's, carries no roulette noise.
     if (roulette_due) {
       roulette_due = false;
       const float q = roulette_termination(beta.max() * eta_scale);

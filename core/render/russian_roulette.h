@@ -2,10 +2,9 @@
 // Russian roulette (Arvo & Kirk 1990): a path whose throughput, relative to where it started, has
 // fallen to t ends with probability q and otherwise is divided by 1 − q, so the estimate stays
 // unbiased. It continues with probability min(1, √(2t)): no roulette until the throughput has
-// halved, and then later than Cycles' min(1, √t), which cut 0–35% of the variance per sample on the
-// env-lit shared assets (AttenuationTest's absorbing glass most) for 0–4% more rays (issue 10;
-// tools/README.md). The path tracer decides it where the path meets its next surface, never on a
-// ray that leaves for the sky.
+// halved, and then later than Cycles' min(1, √t): less variance per sample (the most through
+// absorbing glass) for few more rays (docs/performance.md, "Sampling choices"). The path tracer
+// decides it where the path meets its next surface, never on a ray that leaves for the sky.
 
 #include <algorithm>
 #include <cmath>

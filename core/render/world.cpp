@@ -293,7 +293,7 @@ bool World::cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_ble
 std::optional<SurfaceInteraction> World::intersect(const Ray& ray, bool keep_blend) const {
   // The hit is made where it is returned: every return names `si`, so the caller's object is `si`.
   // (Made apart and copied there, the copy read back with wide loads the fields just stored one by
-  // one, which x86 cannot forward: 70% of this function's time on AttenuationTest went to stalls.)
+  // one, which x86 cannot forward: most of this function's time went to the stalls.)
   std::optional<SurfaceInteraction> si(std::in_place);
   std::optional<Ray> rest;  // past cut-away surfaces, what is left of the ray beyond them
   float travelled = 0;

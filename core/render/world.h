@@ -99,8 +99,9 @@ class World {
   };
   std::vector<Enclosure> enclosures_;
   // Per mesh, the mesh a hit on it reads indices and vertex attributes from: the first with the very
-  // same ones. glTF primitives that share accessors but not materials load as copies (the 98 spheres
-  // of MetalRoughSpheres, 19 MB); shading them from one copy keeps what a hit reads in cache.
+  // same ones. glTF primitives that share accessors but not materials load as copies (a grid of
+  // spheres that differ only in material); shading them from one copy keeps what a hit reads in
+  // cache.
   std::vector<const Mesh*> attribute_mesh_;
   int environment_light_ = -1;
   std::unique_ptr<const EnvironmentMap> environment_map_;

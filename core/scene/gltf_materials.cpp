@@ -30,7 +30,7 @@ Material GltfLoader::convert_material(const tinygltf::Material& m, int index) {
   surface_model.thickness_texture = extension_texture(m, "KHR_materials_volume", "thicknessTexture", context);
   // The thickness only marks thin walls, where its G is 0 (PbrMaterial::inputs): a texture with no
   // such texel marks none (bilinear filtering of positive texels stays positive), and is dropped
-  // rather than looked up at every hit (7% of GlassVaseFlowers' render time).
+  // rather than looked up at every hit.
   if (surface_model.thickness_texture && !surface_model.thickness_texture->image->any_zero(1))
     surface_model.thickness_texture.reset();
   if (m.extensions.count("KHR_materials_pbrSpecularGlossiness")) apply_spec_gloss(m, surface_model, context);

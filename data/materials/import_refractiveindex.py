@@ -6,8 +6,8 @@ Usage:
   import_refractiveindex.py --check                verify the committed files only
 
 SOURCE_DIR is the folder holding metals/*.yml and dielectrics/*.yml: unmodified pages of the
-refractiveindex.info database (CC0 1.0), e.g. ../shared/data/optical-constants. The renderer
-never reads SOURCE_DIR; it reads what this script writes:
+refractiveindex.info database (CC0 1.0), e.g. data/optical-constants in the shared assets
+(PRISM_SHARED_DIR). The renderer never reads SOURCE_DIR; it reads what this script writes:
 
   metals/<key>.csv   '#' comments, header "wavelength_nm,n,k", the measured rows with the
                      wavelength converted from um to nm (n, k copied verbatim). Kept: every row

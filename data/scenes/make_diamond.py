@@ -5,7 +5,8 @@ A round gem of eight-fold symmetry (octagonal table, 16-sided girdle, crown of b
 facets, pavilion of 16 facets to a point; proportions near the Tolkowsky brilliant's: table 57%
 of the diameter, crown angle 34.5°, pavilion angle 40.75°) of diamond (IOR 2.42, Abbe number 55:
 KHR_materials_dispersion 20/55), table up, on a dark floor under one small bright light. 78
-triangles. A report scene of `prism converge` (docs/bidirectional/).
+triangles. A report scene of `prism converge` (docs/performance.md, "The integrators at equal
+time").
 
 Run:  python3 data/scenes/make_diamond.py
 Standard library only (helpers in gltf_builder.py).

@@ -3,7 +3,8 @@
 
 A small bright light shines down on a flint-glass prism (SCHOTT N-SF11 in Prism, the same
 glass's index and Abbe number for other viewers) standing on a white floor; the prism throws a
-spectrum on the floor. The scene for `prism converge`'s dispersion report (docs/).
+spectrum on the floor. A report scene of `prism converge` (docs/performance.md, "The integrators
+at equal time").
 
 Run:  python3 data/scenes/make_dispersion.py
 Standard library only (helpers in gltf_builder.py).
@@ -23,7 +24,7 @@ OBJECTS = [
     ("floor", quad((-2, 0, 2), (2, 0, 2), (2, 0, -2), (-2, 0, -2)), FLOOR),
     ("back_wall", quad((-2, 0, -2), (2, 0, -2), (2, 2, -2), (-2, 2, -2)), WALL),
     # 1 mm over the floor: a base coincident with the floor makes which of the two a ray meets
-    # depend on the ray, and the integrators' strategies then disagree (VCM was 1.7% below BDPT).
+    # depend on the ray, and the integrators' strategies then disagree (VCM's mean falls below BDPT's).
     ("prism", prism((0.0, 0.001, 0.0), 0.5, 0.8, 90.0), FLINT),
     # A 25 cm square light, up and to the side, facing down.
     ("light", quad((-1.0, 1.2, -0.125), (-0.75, 1.2, -0.125), (-0.75, 1.2, 0.125), (-1.0, 1.2, 0.125)), LIGHT),

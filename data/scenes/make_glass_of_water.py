@@ -5,8 +5,8 @@ A tumbler with thin walls (IOR 1.5) two-thirds full of water (IOR 1.33, KHR_mate
 a faint blue-green attenuation) stands on a white table under one small, bright light, up and
 behind it; the glass focuses the light into a caustic on the table in front of it. The water
 stops 0.2 mm short of the glass and the glass 0.1 mm over the table (air films), so that no two
-surfaces coincide. A report scene
-of `prism converge` (docs/bidirectional/).
+surfaces coincide. A report scene of `prism converge` (docs/performance.md, "The integrators at
+equal time").
 
 Run:  python3 data/scenes/make_glass_of_water.py
 Standard library only (helpers in gltf_builder.py).

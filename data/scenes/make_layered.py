@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Generate the layered-material showcases (issue 12):
+"""Generate the layered-material showcases and the layered lobes' cost benchmark:
 
   iridescence.gltf  soap bubbles (KHR_materials_iridescence: a water film, n 1.33, over a
                     closed surface of index 1, so light crosses a single film at each wall),
@@ -12,7 +12,7 @@
                     specular colour, iridescence, anisotropy, diffuse transmission): the time per
                     sample of the two is the layered lobes' cost (`prism bench features`).
 
-Both are lit by a long soft box overhead and a dimmer one behind the camera.
+All four are lit by a long soft box overhead and a dimmer one behind the camera.
 Run:  python3 data/scenes/make_layered.py
 Standard library only (helpers in gltf_builder.py).
 """

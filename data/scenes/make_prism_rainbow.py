@@ -6,7 +6,8 @@ prism of flint glass (SCHOTT N-SF11 in Prism, its index and Abbe number for othe
 at minimum deviation for yellow light; the spectrum lands on a white screen. A dim ceiling panel
 lights the room so that the table, the screen and the prism are visible. The beam is a delta
 light through glass: only light paths (bdpt, vcm, light tracing) carry the rainbow; the path
-tracer sees the room only. A report scene of `prism converge` (docs/bidirectional/).
+tracer sees the room only. A report scene of `prism converge` (docs/performance.md, "The
+integrators at equal time").
 
 Run:  python3 data/scenes/make_prism_rainbow.py
 Standard library only (helpers in gltf_builder.py).

@@ -4,7 +4,7 @@
 The flint-glass prism of dispersion.gltf (SCHOTT N-SF11) with GGX roughness 0.3: light through it
 still splits by wavelength, but into blurred lobes, which the path tracer samples at the hero
 wavelength's index and weighs over all its wavelengths (hero-wavelength spectral MIS). The scene
-for measuring that estimator's colour noise (README, "Dispersion").
+for measuring that estimator's colour noise (docs/design.md, "Dispersion and spectral MIS").
 
 Run:  python3 data/scenes/make_rough_dispersion.py
 Standard library only (helpers in gltf_builder.py).

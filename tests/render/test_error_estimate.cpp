@@ -1,7 +1,8 @@
 // The render's own error estimate against the true error, under the default (Owen-scrambled
 // Sobol) sampler: on scenes whose answer is known exactly, on the default scene and on a shared
-// asset (skipped without ../shared) against a long reference render. The estimated relative RMSE
-// must be within 20% of the true one (on the default scene as root mean squares over 16 renders).
+// asset (skipped without the shared assets, PRISM_SHARED_DIR) against a long reference render.
+// The estimated relative RMSE must be within 20% of the true one (on the default scene as root mean
+// squares over 16 renders).
 
 #include <catch2/catch.hpp>
 
@@ -107,10 +108,7 @@ TEST_CASE("error estimate: the default scene against a long reference") {
 
 TEST_CASE("error estimate: a shared asset (Box under a uniform sky) against a long reference", "[shared]") {
   const auto file = test::shared_dir() / "assets/gltf/Box/glTF/Box.gltf";
-  if (!std::filesystem::exists(file)) {
-    WARN("no ../shared: skipped");
-    return;
-  }
+  if (!test::shared_assets_present("assets/gltf/Box/glTF/Box.gltf")) return;
   Scene scene = load_gltf(file);
   scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
   check_against_reference(scene, framing_camera(scene.world_bounds(), 1.f), 64, 16, 1);

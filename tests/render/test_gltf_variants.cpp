@@ -1,7 +1,7 @@
-// The shared Khronos assets of issue 11's compression, instancing, texture and material
-// extensions: they load without an "ignoring" warning and render with zero invalid samples, and
-// the Draco and quantized variants of one model give the image of its plain variant, within the
-// quantization error. Skipped when ../shared is absent.
+// The Khronos sample assets of the compression, instancing, texture and material extensions (in
+// the shared assets, PRISM_SHARED_DIR): they load without an "ignoring" warning and render with
+// zero invalid samples, and the Draco and quantized variants of one model give the image of its
+// plain variant, within the quantization error. Skipped without the shared assets.
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -17,16 +17,14 @@ namespace {
 
 std::filesystem::path asset(const std::string& relative) { return test::shared_dir() / "assets" / "gltf" / relative; }
 
-bool have_shared() {
-  if (std::filesystem::is_directory(test::shared_dir() / "assets" / "gltf")) return true;
-  WARN("../shared is absent: skipping");
-  return false;
-}
+bool have_shared() { return test::shared_assets_present("assets/gltf"); }
 
 }  // namespace
 
-TEST_CASE("issue 11's shared assets load without 'ignoring' warnings and render with zero invalid samples",
-          "[shared]") {
+TEST_CASE(
+    "the compression, instancing, texture and material extensions' assets load without 'ignoring' warnings and "
+    "render with zero invalid samples",
+    "[shared]") {
   if (!have_shared()) return;
   const auto dir = test::temp_dir("variants_cli");
   for (const char* file :

@@ -1,6 +1,6 @@
 // The Khronos sample assets of the layered material extensions (clearcoat, sheen, thin film,
 // specular colour) load without an "ignoring" warning and render with no invalid sample.
-// Skipped without ../shared.
+// Skipped without the shared assets (PRISM_SHARED_DIR).
 
 #include <catch2/catch.hpp>
 
@@ -12,10 +12,7 @@ using namespace prism;
 
 TEST_CASE("the layered-material sample assets load without warnings and render cleanly", "[shared]") {
   const auto assets = test::shared_dir() / "assets/gltf";
-  if (!std::filesystem::exists(assets)) {
-    WARN("no ../shared: skipped");
-    return;
-  }
+  if (!test::shared_assets_present("assets/gltf")) return;
   const auto dir = test::temp_dir("layered_assets");
   for (const char* name :
        {"ClearcoatWicker", "ClearCoatCarPaint", "SheenCloth", "IridescenceSuzanne", "SpecularTest"}) {

@@ -165,7 +165,7 @@ TEST_CASE("a render resumed from a checkpoint file equals the uninterrupted rend
   CHECK_THROWS_WITH(load_checkpoint(file, "fingerprint"), Catch::Contains("truncated or damaged"));
 }
 
-TEST_CASE("the time limit counts the seconds of the sessions before a resume") {
+TEST_CASE("the time limit counts the seconds of the runs before a resume") {
   const Setup s = caustic_scene();
   RenderOptions o = options_with(64, 2);
   std::atomic<bool> stop{false};

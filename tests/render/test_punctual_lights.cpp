@@ -1,7 +1,7 @@
 // Punctual lights against their analytic irradiance on a Lambertian plane, whose radiance is
 // ρ E / π: point E = I cos θ / d², spot the same times glTF's cone attenuation, directional
 // E = E⊥ cos θ. Direct light only (max depth 1), through both integrators. And the lamp
-// (LightsPunctualLamp, issue 12): a point light centimetres from a Lambertian plane, and behind
+// (as in Khronos' LightsPunctualLamp): a point light centimetres from a Lambertian plane, and behind
 // a rough thin-walled pane, whose transmitted radiance is written out below from the glTF
 // definition, independently of the renderer's lobes.
 

@@ -378,10 +378,7 @@ TEST_CASE("anisotropy 0 renders the isotropic material bit for bit; a strong one
 
 TEST_CASE("the Khronos anisotropy assets load without warnings and render with zero invalid samples", "[shared]") {
   const auto root = test::shared_dir() / "assets" / "gltf";
-  if (!std::filesystem::is_directory(root)) {
-    WARN("../shared is absent: skipping");
-    return;
-  }
+  if (!test::shared_assets_present("assets/gltf")) return;
   for (const char* name : {"AnisotropyStrengthTest", "AnisotropyRotationTest"}) {
     const auto file = root / name / "glTF-Binary" / (std::string(name) + ".glb");
     INFO(file.string());

@@ -2,13 +2,13 @@
 // on data/scenes/dispersion.gltf over SEEDS independent renders each, with the standard error
 // from the spread of the per-seed means (VCM's pixels share photons and wavelengths within an
 // iteration, so the spread of pixels within one image says nothing about its mean's error).
-// It bisected VCM's 1.7% offset against BDPT, which came from the prism's base lying on the floor
-// (README, docs/bidirectional); e.g.
+// It finds where two integrators' means part, by turning the scene's features off one at a time
+// (a base coincident with the floor, for one, offsets VCM's mean against BDPT's); e.g.
 //   VARIANT=1 SPP=128 SEEDS=12 build/tests/tests_render "[vcm-bisection]"
 // VARIANT bits: 1 prism of constant index, 2 prism diffuse, 4 emitter without its glossy coat,
 // 8 floor and wall black, 16 prism lowered 1 mm onto the floor (its base coincident with the floor,
-// as the scene had it until the offset was found to come from there). I1, I2: the integrators (IntegratorKind order: 0
-// path, 2 bdpt, 3 vcm, 4 light; −1 none). Also W, SPP, SEEDS, DEPTH, WL (wavelengths), RADIUS (0: default).
+// which offsets VCM's mean). I1, I2: the integrators (IntegratorKind order: 0 path, 2 bdpt, 3 vcm,
+// 4 light; −1 none). Also W, SPP, SEEDS, DEPTH, WL (wavelengths), RADIUS (0: default).
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <cstdlib>

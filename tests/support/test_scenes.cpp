@@ -205,13 +205,18 @@ int run_prism(const std::string& arguments, std::string* err, std::string* out) 
 
 std::filesystem::path shared_dir() { return PRISM_SHARED_DIR; }
 
+bool shared_assets_present(const std::filesystem::path& needed) {
+  if (std::filesystem::exists(needed.empty() ? shared_dir() : shared_dir() / needed)) return true;
+  static bool warned = false;
+  if (!warned) WARN("SKIPPED: the shared assets (PRISM_SHARED_DIR) are absent");
+  warned = true;
+  return false;
+}
+
 std::vector<std::filesystem::path> shared_gltf_assets() {
   const auto root = shared_dir() / "assets" / "gltf";
   std::vector<std::filesystem::path> files;
-  if (!std::filesystem::is_directory(root)) {
-    WARN("../shared is absent: skipping");
-    return files;
-  }
+  if (!shared_assets_present("assets/gltf")) return files;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(root))
     if (entry.path().extension() == ".gltf" || entry.path().extension() == ".glb") files.push_back(entry.path());
   std::sort(files.begin(), files.end());

@@ -68,9 +68,16 @@ std::filesystem::path temp_dir(const std::string& name);
 // in `out` when given.
 int run_prism(const std::string& arguments, std::string* err = nullptr, std::string* out = nullptr);
 
-// The developer assets in ../shared (every .gltf and .glb below assets/gltf), or none when
-// ../shared is absent: tests that use them then skip with a warning.
-std::vector<std::filesystem::path> shared_gltf_assets();
+// The shared assets (PRISM_SHARED_DIR): developer assets the project never needs to build or pass
+// its tests. shared_dir() is their folder.
 std::filesystem::path shared_dir();
+// Whether `needed` (a path inside the shared assets; their folder itself by default) exists. When
+// it does not, warns "SKIPPED: the shared assets (PRISM_SHARED_DIR) are absent" (once per test
+// program), which CTest counts as a skipped test, and returns false: a test that uses the shared
+// assets returns at once.
+bool shared_assets_present(const std::filesystem::path& needed = {});
+// Every .gltf and .glb below the shared assets' assets/gltf, or none (a skip, as above) when the
+// shared assets are absent.
+std::vector<std::filesystem::path> shared_gltf_assets();
 
 }  // namespace prism::test
