@@ -1,6 +1,7 @@
 # Prism. On a fresh Debian 12 machine:
 #   make render   installs what is missing, builds (Release), renders the default scene
 #   make test     the same set-up, then the whole test suite
+#   make check    the repository's own rules: C/C++ layout (clang-format-14) and words (tools/check_words.sh)
 #   make test-sanitize   the test suite built with AddressSanitizer + UBSan (in build-asan/)
 #   make fuzz     libFuzzer targets (clang, in build-fuzz/), each run FUZZ_SECONDS on a generated corpus
 #   make bench-rays   Prism's BVH against Embree, ray for ray (needs raybench built in the shared assets (PRISM_SHARED_DIR))
@@ -17,7 +18,7 @@ FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
 SANITIZE := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 
-.PHONY: all deps build render test test-slurm test-sanitize fuzz bench-rays clean
+.PHONY: all deps build render test check test-slurm test-sanitize fuzz bench-rays clean
 
 all: build
 
@@ -34,6 +35,13 @@ render: build
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE slurm
+
+# The repository's own rules, checked before anything is built: every tracked C/C++ file in the
+# layout of .clang-format, and no tracked file speaking of how the work was organised.
+check:
+	@tools/install-deps.sh clang-format-14 git
+	git ls-files -z '*.cpp' '*.h' | xargs -0 clang-format-14 --dry-run -Werror
+	tools/check_words.sh
 
 # `prism farm slurm` on a single-node Slurm cluster it starts on this machine (root; skips otherwise).
 test-slurm: build

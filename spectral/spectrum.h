@@ -50,7 +50,7 @@ RowPlaces<N> locate_rows(const SampledWavelengths<N>& lambda, float first, int r
 }
 
 // Linear interpolation between samples; beyond the first / last sample the end value holds
-// (measured tables that stop short of 360 or 830 nm are extended flat, not dropped to 0).
+// (measured tables that end short of 360 or 830 nm are extended flat, not dropped to 0).
 class TabulatedSpectrum {
  public:
   TabulatedSpectrum(std::vector<float> lambdas, std::vector<float> values);
