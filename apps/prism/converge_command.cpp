@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "apps/prism/commands.h"
+#include "apps/prism/image_errors.h"
 #include "apps/prism/plot.h"
 #include "apps/prism/scene_setup.h"
 #include "core/base/error.h"
@@ -68,26 +69,6 @@ std::vector<Configuration> configurations(const ConvergeArgs& args) {
   return c;
 }
 
-struct Errors {
-  double rmse, relative_mse, mean_error;
-};
-
-// Against the reference, over all pixels and channels: root-mean-square error, mean squared
-// error relative to the reference value (with 0.01 added to its square, the usual guard
-// against dark pixels), and the difference of the means (a bias shows as a plateau in it).
-Errors errors(const std::vector<float>& image, const std::vector<float>& reference) {
-  double se = 0, rel = 0, sum = 0, ref_sum = 0;
-  for (size_t i = 0; i < image.size(); ++i) {
-    const double d = double(image[i]) - reference[i];
-    se += d * d;
-    rel += d * d / (double(reference[i]) * reference[i] + 0.01);
-    sum += image[i];
-    ref_sum += reference[i];
-  }
-  const double n = double(image.size());
-  return {std::sqrt(se / n), rel / n, (sum - ref_sum) / n};
-}
-
 std::vector<float> render_rgb(const PreparedScene& p, const RenderOptions& options, RenderStats* stats = nullptr) {
   const RenderResult r = render(*p.world, *p.camera, options);
   std::vector<float> rgb = r.state.film.xyz_image();
@@ -129,7 +110,7 @@ std::vector<float> reference_image(const ConvergeArgs& args, const PreparedScene
 struct Point {
   int spp;
   double seconds;
-  Errors e;
+  ImageErrors e;
 };
 
 // Seconds to reach an RMSE of `target`, interpolating log(seconds) against log(RMSE) between
@@ -179,7 +160,7 @@ void run_equal_time(const ConvergeArgs& args, const PreparedScene& p, const std:
     options.spp = 1 << 20;
     options.time_limit = args.seconds;
     RenderStats stats;
-    const Errors e = errors(render_rgb(p, options, &stats), reference);
+    const ImageErrors e = image_errors(render_rgb(p, options, &stats), reference);
     const double relative = e.rmse / reference_mean;
     scaled.push_back(relative * std::sqrt(stats.seconds / args.seconds));
     const double spp = double(stats.samples) / pixels;
@@ -217,7 +198,7 @@ void run(const ConvergeArgs& args) {
       RenderOptions options = config.options;
       options.spp = spp;
       RenderStats stats;
-      const Errors e = errors(render_rgb(p, options, &stats), reference);
+      const ImageErrors e = image_errors(render_rgb(p, options, &stats), reference);
       series.back().push_back({spp, stats.seconds, e});
       csv << '"' << config.name << "\"," << spp << ',' << stats.seconds << ',' << e.rmse << ',' << e.relative_mse << ','
           << e.mean_error << '\n';

@@ -1,6 +1,9 @@
 // The prism command line: subcommands' output formats and errors.
 
+#include <fmt/format.h>
+
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -134,4 +137,34 @@ TEST_CASE("prism converge --seconds compares the chosen integrators at equal tim
   CHECK(test::run_prism("converge \"" PRISM_SOURCE_DIR "/data/scenes/cornell.gltf\" --integrators path,mlt "
                         "--seconds 1 --reference \"" +
                         (dir / "ref.exr").string() + "\" --out \"" + dir.string() + "\"") == 2);
+}
+
+TEST_CASE("prism compare: an image's error against a reference, linear and as displayed, and two seeds' error") {
+  const auto dir = test::temp_dir("compare");
+  const auto constant = [&](const char* name, float value, int width) {
+    const std::filesystem::path file = dir / name;
+    write_exr(file, {width, 4, std::vector<float>(size_t(width) * 4 * 3, value), {}, {}}, false);
+    return fmt::format("\"{}\"", file.string());
+  };
+  const std::string a = constant("a.exr", 0.5f, 4), b = constant("b.exr", 0.25f, 4);
+  // The sRGB encoding of 0.5 and 0.25: 1.055 x^(1/2.4) − 0.055.
+  const double ea = 1.055 * std::pow(0.5, 1 / 2.4) - 0.055, eb = 1.055 * std::pow(0.25, 1 / 2.4) - 0.055;
+  const auto value = [](const std::string& out, const std::string& key) {
+    const size_t at = out.find(key + "=");
+    REQUIRE(at != std::string::npos);
+    return std::stod(out.substr(at + key.size() + 1));
+  };
+  std::string out;
+  REQUIRE(test::run_prism("compare " + a + " " + b, nullptr, &out) == 0);
+  CHECK(value(out, "rmse") == Approx(0.25));
+  CHECK(value(out, "relative_rmse") == Approx(1.0));
+  CHECK(value(out, "display_relative_rmse") == Approx((ea - eb) / eb).epsilon(1e-5));
+  CHECK(value(out, "reference_mean") == Approx(0.25));
+  REQUIRE(test::run_prism("compare --independent " + a + " " + b, nullptr, &out) == 0);
+  CHECK(value(out, "relative_rmse") == Approx(1 / std::sqrt(2.0)));
+  REQUIRE(test::run_prism("compare " + a + " " + a, nullptr, &out) == 0);
+  CHECK(value(out, "rmse") == 0);
+  std::string err;
+  CHECK(test::run_prism("compare " + a + " " + constant("wide.exr", 0.25f, 8), &err) == 1);
+  CHECK(err.find("only images of one size compare") != std::string::npos);
 }

@@ -77,14 +77,16 @@ struct Process {
   }
 };
 
-// A render that would take hours, in passes of about a second (16 spp at 320 × 240, 2 threads):
-// long enough that a second signal sent as soon as the first is logged arrives within the pass.
+// A render that would take hours, in passes of about a second (the path tracer's 16 spp at
+// 320 × 240, 2 threads): long enough that a second signal sent as soon as the first is logged
+// arrives within the pass.
 std::vector<std::string> long_render(const std::filesystem::path& exr, const std::filesystem::path& png) {
-  return {"render",     PRISM_SOURCE_DIR "/data/scenes/cornell.gltf",
-          "--width",    "320",
-          "--spp",      "1000000",
-          "-v",         "-o",
-          exr.string(), "--preview",
+  return {"render",       PRISM_SOURCE_DIR "/data/scenes/cornell.gltf",
+          "--width",      "320",
+          "--spp",        "1000000",
+          "--integrator", "path",
+          "-v",           "-o",
+          exr.string(),   "--preview",
           png.string()};
 }
 
