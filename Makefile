@@ -7,7 +7,7 @@
 #   make bench-rays   Prism's BVH against Embree, ray for ray (needs raybench built in the shared assets (PRISM_SHARED_DIR))
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
-SPP ?= 64
+SPP ?= 12
 SIZE ?= 512
 
 PACKAGES := cmake make g++ pkg-config python3 libopenexr-dev libopencolorio-dev libtinygltf-dev nlohmann-json3-dev \

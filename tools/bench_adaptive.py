@@ -11,7 +11,8 @@ between the two uniform renders that bracket it). Ratios below 1 mean adaptive s
     tools/bench_adaptive.py [--prism build/apps/prism] [--width 96] [--ref-spp 4096]
                             [--scenes data/scenes/cornell.gltf,...] [--out out/bench_adaptive] [--extra '--env 1,1,1']
 
-Reads EXRs with ../shared/tools/cycles/exrstats.py (pure Python + numpy). Run it under cpu-timing.
+Reads EXRs with exrstats.py (pure Python + numpy) from the Cycles harness of the shared assets
+(PRISM_SHARED_DIR, tools/cycles). The seconds are compared, so run it on an otherwise idle machine.
 """
 import argparse
 import math
@@ -19,8 +20,11 @@ import os
 import subprocess
 import sys
 
+from shared_dir import shared_dir
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "shared", "tools", "cycles"))
+sys.path.insert(0, str(shared_dir() / "tools" / "cycles"))
+sys.dont_write_bytecode = True  # never leave a __pycache__ in the shared assets
 import exrstats  # noqa: E402
 import numpy as np  # noqa: E402
 

@@ -5,7 +5,7 @@ For each scene: a long reference render, then renders at a few sample counts wit
 Each render's header carries its own estimate, prism.estimatedRelRmse (README: the error
 estimate); its true relative RMSE is sqrt(mean over pixels of (Y - Y_ref)^2 - the reference's own
 estimated variance) / mean Y_ref, Y the Rec.709 luminance. Both are averaged over the seeds as mean
-squares. The table prints estimate / truth: the issue asks for 1 +- 0.2.
+squares. The table prints estimate / truth, which should be 1 +- 0.2 (the test suite's margin).
 
 With --compare OTHER_PRISM, it instead prints the true relative RMSE of both binaries at equal spp
 against the same reference, the ratio of the samples they took, and the ratio of samples they
@@ -15,17 +15,21 @@ sampler change, e.g. splitting a pixel's net into independently scrambled replic
     tools/bench_error_estimate.py [--prism build/apps/prism] [--compare OTHER] [--width 64]
         [--spp 4,16,64] [--seeds 4] [--ref-spp 4096] [--scenes Box,Duck,data/scenes/cornell.gltf]
 
-A scene is a .gltf/.glb path or the name of an asset in ../shared/assets/gltf (rendered with
---env 1,1,1). Reads EXRs with ../shared/tools/cycles/exrstats.py. Run it under cpu-timing.
+A scene is a .gltf/.glb path or the name of an asset in assets/gltf of the shared assets
+(PRISM_SHARED_DIR; rendered with --env 1,1,1). Reads EXRs with the Cycles harness's exrstats.py
+(PRISM_SHARED_DIR/tools/cycles).
 """
 import argparse
 import os
 import subprocess
 import sys
 
+from shared_dir import shared_dir
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-SHARED = os.path.join(HERE, "..", "..", "shared")
+SHARED = str(shared_dir())
 sys.path.insert(0, os.path.join(SHARED, "tools", "cycles"))
+sys.dont_write_bytecode = True  # never leave a __pycache__ in the shared assets
 import exrstats  # noqa: E402
 import numpy as np  # noqa: E402
 

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Prism's BVH against Embree, ray for ray (issue 4). Generates raybench's ray sets (primary
+# Prism's BVH against Embree, ray for ray. Generates raybench's ray sets (primary
 # 1024x1024, diffuse and shadow 1M, seed 1) for three scenes, traces each set with
 # `prism bench rays` and `raybench embree` back to back, checks Prism's hits against Embree's
 # with `raybench check`, and prints a Markdown table of throughput, build time and memory.
 #
-# Environment: RAYBENCH  raybench binary (default ../shared/tools/raybench/build/raybench)
+# The shared assets (PRISM_SHARED_DIR; default: `python3 tools/shared_dir.py`) hold raybench and
+# the two Khronos scenes.
+# Environment: RAYBENCH  raybench binary (default $PRISM_SHARED_DIR/tools/raybench/build/raybench)
 #              PRISM     prism binary (default build/apps/prism)
 #              OUT       scratch folder for scenes, rays and hits (default build/bench_rays)
 #              ROUNDS    alternations of Prism and Embree per cell; best of each (default 3)
@@ -16,11 +18,11 @@
 #              EMBREE_CONFIG  extra Embree device config, e.g. isa=avx2 for its AVX2 kernels (default none)
 # The AVX2 comparison on an AVX-512 machine: Prism built with -DPRISM_ARCH=x86-64-v3 (README) and
 #   PRISM=build-avx2/apps/prism EMBREE_CONFIG=isa=avx2 tools/bench_rays.sh
-# The machine is shared and noisy: the best of several alternations is compared, as raybench's
-# README recommends; rerun when a cell looks off.
+# On a shared, noisy machine the best of several alternations is compared, as raybench's README
+# recommends; rerun when a cell looks off.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-shared=$root/../shared
+shared=${PRISM_SHARED_DIR:-$(python3 "$root/tools/shared_dir.py")}
 raybench=${RAYBENCH:-$shared/tools/raybench/build/raybench}
 prism=${PRISM:-$root/build/apps/prism}
 out=${OUT:-$root/build/bench_rays}

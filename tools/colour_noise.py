@@ -8,8 +8,8 @@ their standard errors (they must agree between binaries); the median seconds per
     tools/colour_noise.py data/scenes/rough_dispersion.gltf --prism OLD_PRISM build/apps/prism \\
         --spp 16 --seeds 16 --width 128 --roi 0.16,0.36,0.53,0.62
 
-Needs numpy and ../shared/tools/cycles/exrstats.py (the EXR reader); without them it prints
-`colour_noise: SKIPPED: ...` and exits 0.
+Needs numpy and exrstats.py, the EXR reader of the Cycles harness in the shared assets
+(PRISM_SHARED_DIR/tools/cycles); without them it prints `colour_noise: SKIPPED: ...` and exits 0.
 """
 import argparse
 import os
@@ -18,8 +18,10 @@ import subprocess
 import sys
 import time
 
+from shared_dir import shared_dir
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "shared", "tools", "cycles"))
+sys.path.insert(0, str(shared_dir() / "tools" / "cycles"))
 sys.dont_write_bytecode = True
 try:
     import numpy as np

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Agreement with a peer: render the shared glTF assets with Prism and with Blender 3.4 Cycles
-(the harness in ../shared/tools/cycles) at the same size, camera, spp and bounce limit, back to
-back, and compare the images in linear Rec.709.
+(the harness in tools/cycles of the shared assets, PRISM_SHARED_DIR) at the same size, camera,
+spp and bounce limit, back to back, and compare the images in linear Rec.709.
 
     tools/compare_cycles.py [--spp 1024] [--width 320] [--height H] [--assets Box,TransmissionTest]
                             [--threads 2] [--max-depth 16] [--out out/compare_cycles] [--previews]
@@ -9,9 +9,11 @@ back, and compare the images in linear Rec.709.
 For each asset it prints the image means (R, G, B and Rec.709 luminance Y) of both renderers,
 their relative difference (Prism / Cycles - 1), the RMSE relative to Cycles' mean, and the
 seconds of each renderer; it writes both EXRs, the logs and summary.md / summary.csv to --out.
-See tools/README.md for the conventions (units, bounces, cameras) and the known differences.
+tools/README.md has the conventions (units, bounces, cameras); docs/performance.md the figures and the
+known differences.
 
-Skips (message, exit 0) when ../shared or Blender is absent. Exit 1 when a render fails.
+Skips (message, exit 0) when the shared assets (PRISM_SHARED_DIR, see tools/shared_dir.py) or
+Blender are absent. Exit 1 when a render fails.
 Needs Python 3 and numpy (which the Cycles harness needs anyway).
 """
 import argparse
@@ -28,16 +30,18 @@ import subprocess
 import sys
 import time
 
+from shared_dir import shared_dir
+
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
-# The shared assets both renderers load (see issue 6, item 5). Each is read from
-# ../shared/assets/gltf/<name>/glTF/<name>.gltf.
+# The shared assets both renderers load, each read from
+# PRISM_SHARED_DIR/assets/gltf/<name>/glTF/<name>.gltf.
 ASSETS = ["MetalRoughSpheresNoTextures", "TransmissionTest", "GlassVaseFlowers", "LightsPunctualLamp",
           "EmissiveStrengthTest", "AttenuationTest", "Box"]
 # --equal-error's reference length where 2048 spp is too short: LightsPunctualLamp's point-light
 # peaks are heavy-tailed, and with 2 x 1024 spp references its ratio moved by +-0.2 between runs.
 REFERENCE_SPP = {"LightsPunctualLamp": 16384}
-# The layered-material assets (issue 12), compared on request with --assets.
+# The layered-material assets, compared on request with --assets.
 LAYERED_ASSETS = ["ClearcoatWicker", "ClearCoatCarPaint", "SheenCloth", "SpecularTest"]
 
 DEFAULT_ASPECT = 4.0 / 3.0  # image aspect for assets without a camera
@@ -71,8 +75,9 @@ def parse_args():
                          "'none': never (default 1,1,1)")
     ap.add_argument("--out", default=os.path.join(REPO, "out", "compare_cycles"),
                     help="directory for the EXRs, logs and summary.md/summary.csv (default out/compare_cycles)")
-    ap.add_argument("--shared", default=os.path.join(os.path.dirname(REPO), "shared"),
-                    help="the shared folder (default ../shared from the project root)")
+    ap.add_argument("--shared", default=str(shared_dir()),
+                    help="the shared assets' folder (default: PRISM_SHARED_DIR, else shared/ beside the "
+                         "project's root; now %(default)s)")
     ap.add_argument("--prism", default=os.path.join(REPO, "build", "apps", "prism"), help="Prism executable")
     ap.add_argument("--blender", default=os.environ.get("BLENDER", "blender"), help="Blender executable")
     ap.add_argument("--nice", type=int, default=int(os.environ.get("NICE", "10")),
@@ -94,7 +99,7 @@ def parse_args():
     ap.add_argument("--reuse-references", action="store_true",
                     help="--equal-error: keep references already in --out for the same size, depth and spp")
     ap.add_argument("--references-only", action="store_true",
-                    help="--equal-error: render the references and stop (to split a long run into short ones)")
+                    help="--equal-error: render the references and exit (to split a long run into short ones)")
     ap.add_argument("--conventions", action="store_true",
                     help="instead of the assets, check the unit and bounce conventions on the harness's "
                          "point-light plane and Cornell box (64 spp, 128x128)")
@@ -591,7 +596,7 @@ def main():
         print("compare_cycles: error: %s not found; build Prism first (make build)" % a.prism, file=sys.stderr)
         return 1
     sys.path.insert(0, harness)
-    sys.dont_write_bytecode = True  # never leave a __pycache__ in ../shared
+    sys.dont_write_bytecode = True  # never leave a __pycache__ in the shared assets
     import exrstats
 
     unknown = [x for x in a.assets if x not in ASSETS + LAYERED_ASSETS]
@@ -605,9 +610,9 @@ def main():
         return check_conventions(a, harness, exrstats)
     if a.equal_error:
         return equal_error(a, harness, exrstats, assets_dir)
-    print("Prism vs Cycles (Blender 3.4, ../shared/tools/cycles): %d spp, %d threads each, Prism --max-depth %d = "
+    print("Prism vs Cycles (Blender 3.4, %s): %d spp, %d threads each, Prism --max-depth %d = "
           "Cycles --max-bounces %d, Cycles --lighting-mode COMPAT, box filter 1 px, seed %d, linear Rec.709"
-          % (a.spp, a.threads, a.max_depth, a.max_depth - 1, a.seed))
+          % (harness, a.spp, a.threads, a.max_depth, a.max_depth - 1, a.seed))
     results, failed = [], []
     for name in a.assets:
         work = os.path.join(a.out, name)

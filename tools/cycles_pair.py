@@ -1,6 +1,6 @@
 """What the small Prism-against-Cycles tools share (lamp_pane.py, layering_cycles.py,
-specular_cycles.py): their common options, finding the Cycles harness of ../shared/tools/cycles,
-their scene (a square under an orthographic camera), rendering it with both renderers, the
+specular_cycles.py): their common options, finding the Cycles harness (tools/cycles of the shared
+assets, PRISM_SHARED_DIR), their scene (a square under an orthographic camera), rendering it with both renderers, the
 Fresnel reflectance and an image's mean luminance."""
 
 import base64
@@ -11,13 +11,16 @@ import struct
 import subprocess
 import sys
 
+from shared_dir import shared_dir
+
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def add_common_args(ap, tool):
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--out", default=os.path.join(REPO, "out", tool))
-    ap.add_argument("--shared", default=os.path.join(os.path.dirname(REPO), "shared"))
+    ap.add_argument("--shared", default=str(shared_dir()),
+                    help="the shared assets' folder (default: PRISM_SHARED_DIR, else shared/ beside the project's root)")
     ap.add_argument("--prism", default=os.path.join(REPO, "build", "apps", "prism"))
 
 

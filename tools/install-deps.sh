@@ -1,6 +1,6 @@
 #!/bin/sh
 # Installs the Debian 12 packages Prism needs, if any are missing. As root it runs apt-get;
-# otherwise it prints the exact command to run and stops with an error.
+# otherwise it prints the exact command to run and exits with an error.
 set -eu
 missing=""
 for package in "$@"; do

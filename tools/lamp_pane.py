@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
-"""Why LightsPunctualLamp differs from Cycles, on the smallest scenes that show it (issue 12):
+"""Why LightsPunctualLamp differs from Cycles, on the smallest scenes that show it:
 a point light 5 cm behind a rough pane with glTF's thin-walled transmission (the lamp's shade: an
 open sheet, roughness 0.6, transmission 1, no KHR_materials_volume), and 5 cm in front of a
 Lambertian plane, each seen straight on by an orthographic camera. Renders both with Prism
 (--no-energy-compensation: the single-scattering lobes Cycles 3.4 has) and Blender 3.4 Cycles (the
-harness in ../shared/tools/cycles, COMPAT units), and compares them with answers computed here:
+harness in tools/cycles of the shared assets, PRISM_SHARED_DIR; COMPAT units), and compares them
+with answers computed here:
 
   plane       ρ I cos θ / (π d²);
   thin wall   f_t(wo, wi) I |cos θ_i| / d², f_t the GGX reflection lobe mirrored through the sheet
@@ -14,7 +15,7 @@ harness in ../shared/tools/cycles, COMPAT units), and compares them with answers
 
     tools/lamp_pane.py [--spp 256] [--size 128] [--out out/lamp_pane]
 
-Skips (exit 0) without ../shared or Blender. tests/render/test_punctual_lights.cpp checks Prism
+Skips (exit 0) without the shared assets or Blender. tests/render/test_punctual_lights.cpp checks Prism
 against the same thin-wall answer in every test run.
 """
 import argparse

@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""Why the clear-coated and sheen assets render darker in Prism than in Cycles (issue 12), on the
-smallest scene that shows it: a Lambertian plane (glTF base colour ρ, specularFactor 0) under a
-uniform white environment, seen straight on by an orthographic camera, bare, under a smooth clear
-coat (factor 1, index 1.5), under a sheen (colour 1, roughness 0.5) and under the base's own
-specular layer (specularFactor 1; the others have 0), each with ρ = 0.5 and ρ = 0.
-Renders them with Prism and with Blender 3.4 Cycles (the harness in ../shared/tools/cycles, which
-scales Principled v1's clearcoat by 4 to undo its 0.25) and separates each layer into:
+"""Why the clear-coated and sheen assets render darker in Prism than in Cycles, on the smallest
+scene that shows it: a Lambertian plane (glTF base colour ρ, specularFactor 0) under a uniform
+white environment, seen straight on by an orthographic camera, bare, under a smooth clear coat
+(factor 1, index 1.5), under a sheen (colour 1, roughness 0.5) and under the base's own specular
+layer (specularFactor 1; the others have 0), each with ρ = 0.5 and ρ = 0. Renders them with Prism
+and with Blender 3.4 Cycles (the harness in tools/cycles of the shared assets, PRISM_SHARED_DIR,
+which scales Principled v1's clearcoat by 4 to undo its 0.25) and separates each layer into:
 
   the layer's own reflection        L(layer, ρ = 0)
   what the base keeps under it      (L(layer, ρ) − L(layer, 0)) / L(bare, ρ)
@@ -20,14 +20,14 @@ Principled BSDF with an Add Shader: the base keeps 1.000 of its light under both
 reflections agree for the coat (F(1) = 0.04 in both) and differ for the sheen (the two fibre
 distributions). The same holds, smaller, for the base's own specular layer (specularFactor 1):
 Prism's diffuse keeps 1 − E(μ_o) of its light under it (0.986), Cycles' all of it; that layer's own
-reflection at roughness 1 is 0.014 in Prism and 0.013 in Cycles 3.4 (single scattering); it was 0.079
-in Prism while an opaque thin wall reflected as two faces (the plane has no volume;
-tools/specular_cycles.py).
+reflection at roughness 1 is 0.014 in Prism and 0.013 in Cycles 3.4 (single scattering). The
+plane has no volume, so it is a thin wall, which reflects as one interface over its base when
+opaque (tools/specular_cycles.py checks this at normal incidence).
 SpecularTest's difference is tools/specular_cycles.py's.
 
     tools/layering_cycles.py [--spp 64] [--size 32] [--out out/layering_cycles]
 
-Skips (exit 0) without ../shared or Blender.
+Skips (exit 0) without the shared assets or Blender.
 """
 import argparse
 import os

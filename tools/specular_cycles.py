@@ -1,9 +1,8 @@
 #!/usr/bin/env python3
-"""Why SpecularTest renders darker in Prism than in Cycles (issue 12), on the smallest scene that
-shows it: a smooth black dielectric plane (glTF base colour 0, roughness 0) under a uniform white
+"""Why SpecularTest renders darker in Prism than in Cycles, on the smallest scene that shows it: a smooth black dielectric plane (glTF base colour 0, roughness 0) under a uniform white
 environment, tilted by θ from an orthographic camera, so that every pixel is the Fresnel
 reflectance at that one angle. Rendered with Prism and with Blender 3.4 Cycles (the harness in
-../shared/tools/cycles, which sets Principled v1's Specular from KHR_materials_specular) for
+tools/cycles of the shared assets, PRISM_SHARED_DIR, which sets Principled v1's Specular from KHR_materials_specular) for
 specularFactor s = 0.2 and 1 and specularColorFactor c = 0.2, and compared with the two models:
 
   glTF (KHR_materials_specular)   R = s · F(θ, η_c),  η_c the index of F0 = min(F0(1.5) · c, 1)
@@ -11,16 +10,17 @@ specularFactor s = 0.2 and 1 and specularColorFactor c = 0.2, and compared with 
   Principled v1 (Cycles 3.4)      R = F(θ, η'),  η' the index of F0' = s · min(F0(1.5) · c, 1)
                                   (Specular sets F0 alone; F90 stays 1)
 
-Cycles equals its model at every angle (2026-11-30: to 4 digits), and so does Prism. The models agree at normal incidence and for s = 1; for s < 1 glTF's
-reflection fades to s at grazing and Cycles' rises to 1 (s = 0.2 at 80°: 0.078 against 0.284):
-SpecularTest's first two rows (specularFactor and specularTexture below 1) are darker in Prism by
-that model difference. The scene also showed a Prism defect, since fixed: a glTF material without KHR_materials_volume is
-thin-walled, and Prism gave the whole of such an opaque wall the two faces' reflectance
-R + T²R/(1 − R²) (0.077 instead of 0.040 at normal incidence).
+Cycles equals its model at every angle to 4 digits, and so does Prism. The models agree at normal
+incidence and for s = 1; for s < 1 glTF's reflection fades to s at grazing and Cycles' rises to 1
+(s = 0.2 at 80°: 0.078 against 0.284): SpecularTest's first two rows (specularFactor and
+specularTexture below 1) are darker in Prism by that model difference. The plane also checks the
+thin wall: a glTF material without KHR_materials_volume is thin-walled, and an opaque thin wall
+reflects as one interface over its base (0.040 at normal incidence), not with a sheet's two faces'
+R + T²R/(1 − R²) (0.077).
 
     tools/specular_cycles.py [--spp 16] [--size 16] [--out out/specular_cycles]
 
-Skips (exit 0) without ../shared or Blender.
+Skips (exit 0) without the shared assets or Blender.
 """
 import argparse
 import math

@@ -3,8 +3,8 @@
 # local single-node cluster (local_cluster.sh; as many CPUs as the machine, one thread per part)
 # against the single-process render of the same image (all cores), and the CPU seconds of the 4
 # parts (the same commands, run one after another under /usr/bin/time, since the local cluster
-# keeps no accounting) against the single render's. Needs root. Run it under `cpu-timing` on a
-# shared machine; 512 80 takes about 30 s single-process on 2 cores (AVX-512).
+# keeps no accounting) against the single render's. Needs root. Run it on an otherwise idle
+# machine; 512 80 takes about 30 s single-process on 2 cores (AVX-512).
 # Usage: bench_farm.sh PRISM [WIDTH SPP]
 set -eu
 prism=$(realpath "$1"); width=${2:-128}; spp=${3:-64}
