@@ -17,9 +17,11 @@ struct Rgb {
 };
 
 // The largest emitted radiance (or intensity) per channel Prism accepts: brighter emitters in a
-// file are clamped to it with a warning, brighter command-line values refused. It leaves a float
-// path throughput, summed over many samples, a margin of 10^26 before overflow.
-inline constexpr float kMaxEmission = 1e12f;
+// file are clamped to it with a warning, brighter command-line values refused. The film sums any
+// finite sample exactly (core/render/fixed_point.h); this leaves a light sample's geometric factors
+// and the wavelengths' weights a margin of 10^8 below the largest float before an estimate
+// overflows (and is counted invalid).
+inline constexpr float kMaxEmission = 1e30f;
 
 // Luminance of linear Rec.709 RGB (ITU-R BT.709 weights).
 constexpr float luminance(Rgb c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }

@@ -12,9 +12,18 @@ namespace prism {
 
 namespace {
 
-// Version 4: exact fixed-point film sums (with the second replicate's) of the part's window only
-// (the crop, else the frame), the part of the render, a checksum at the end.
-constexpr char kMagic[8] = {'P', 'R', 'I', 'S', 'M', 'C', 'K', '4'};
+// Version 5: exact fixed-point film sums (with the second replicate's) of the part's window only
+// (the crop, else the frame), then the wide sums of the window's pixels that have them (film.h),
+// the part of the render, a checksum at the end.
+constexpr char kMagic[8] = {'P', 'R', 'I', 'S', 'M', 'C', 'K', '5'};
+
+// The wide sums of one pixel, field by field, in a fixed order.
+template <typename Sums, typename Visit>
+void visit_wide_sums(Sums& w, Visit&& visit) {
+  for (auto* field : {&w.sum, &w.sq, &w.second_sum, &w.splat})
+    for (auto& sum : *field) visit(sum);
+  for (auto& sum : w.spectral) visit(sum);
+}
 
 // The checksum covers every byte after the magic.
 
@@ -123,6 +132,16 @@ void save_checkpoint(const std::filesystem::path& file, const RenderState& state
     for (uint64_t v : {s.rays.primary, s.rays.secondary, s.rays.shadow, s.samples, s.invalid_samples}) w.value(v);
     w.value(s.seconds);
     f.visit_fields(w);
+    uint64_t wide_pixels = 0;
+    const PixelWindow& window = w.window;
+    const auto in_window = [&](size_t p) { return window.contains(int(p % f.width()), int(p / f.width())); };
+    f.visit_wide([&](size_t p, const Film::WideSums&) { wide_pixels += in_window(p); });
+    w.value(wide_pixels);
+    f.visit_wide([&](size_t p, const Film::WideSums& sums) {
+      if (!in_window(p)) return;
+      w.value(uint64_t(p));
+      visit_wide_sums(sums, [&](const WideSum& sum) { w.bytes(sum.words().data(), sizeof(sum.words())); });
+    });
     const uint64_t checksum = w.sum.h;
     w.value(checksum);
     w.out.close();
@@ -162,12 +181,13 @@ RenderState load_render_state(const std::filesystem::path& file) {
   // The window's sums are stored; the film in memory is the frame's. Both are checked before the
   // film is allocated: the window against the file's length, the frame against the machine.
   const SpectralBins spectral_bins = bins.empty() ? SpectralBins{} : SpectralBins::parse(bins);
-  const uint64_t bytes_per_pixel = Film::bytes_per_pixel(aovs, spectral_bins);
+  const uint64_t bytes_per_pixel = Film::bytes_per_pixel(aovs, spectral_bins),
+                 stored_per_pixel = Film::field_bytes_per_pixel(aovs, spectral_bins);
   const PixelWindow window = stored_window(part, width, height);
   const PixelWindow& c = part.crop;
   if (!c.empty() && (c.x0 < 0 || c.y0 < 0 || c.x1 > width || c.y1 > height))
     fail("{}: the checkpoint's crop window lies outside its {}x{} frame (damaged?)", file.string(), width, height);
-  if (uint64_t(window.x1 - window.x0) * uint64_t(window.y1 - window.y0) > r.remaining / bytes_per_pixel)
+  if (uint64_t(window.x1 - window.x0) * uint64_t(window.y1 - window.y0) > r.remaining / stored_per_pixel)
     fail("{}: the checkpoint file is truncated or damaged", file.string());
   const uint64_t memory = uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
   if (uint64_t(width) * uint64_t(height) > memory / bytes_per_pixel)
@@ -185,6 +205,13 @@ RenderState load_render_state(const std::filesystem::path& file) {
     *v = r.value<uint64_t>();
   s.seconds = r.value<double>();
   state.film.visit_fields(r);
+  const uint64_t wide_pixels = r.value<uint64_t>();
+  for (uint64_t i = 0; i < wide_pixels; ++i) {
+    const uint64_t p = r.value<uint64_t>();
+    if (p >= state.film.pixel_count() || !window.contains(int(p % width), int(p / width)))
+      fail("{}: the checkpoint file is truncated or damaged", file.string());
+    visit_wide_sums(state.film.wide(p), [&](WideSum& sum) { r.bytes(sum.words().data(), sizeof(sum.words())); });
+  }
   const uint64_t checksum = r.sum.h;
   if (r.value<uint64_t>() != checksum) fail("{}: the checkpoint file is damaged (checksum mismatch)", file.string());
   if (r.remaining != 0 || state.passes < 0) fail("{}: the checkpoint file is truncated or damaged", file.string());

@@ -18,19 +18,39 @@ Film::Film(int width, int height, uint32_t aovs, SpectralBins bins)
       second_count_(pixel_count(), 0),
       aov_(aovs & (kAovAlbedo | kAovNormal | kAovDepth) ? pixel_count() * kAovFields : 0, 0),
       spectral_(pixel_count() * bins_.count(), 0),
-      splat_(aovs & kFilmSplats ? pixel_count() * 3 : 0, 0) {}
+      splat_(aovs & kFilmSplats ? pixel_count() * 3 : 0, 0),
+      wide_(pixel_count()) {}
 
-uint64_t Film::bytes_per_pixel(uint32_t aovs, const SpectralBins& bins) {
+uint64_t Film::field_bytes_per_pixel(uint32_t aovs, const SpectralBins& bins) {
   const uint64_t fixed = 3 + 3 + 3 + (aovs & (kAovAlbedo | kAovNormal | kAovDepth) ? kAovFields : 0) + bins.count() +
                          (aovs & kFilmSplats ? 3 : 0);
   return fixed * sizeof(Fixed) + 2 * sizeof(uint32_t);
 }
 
+uint64_t Film::bytes_per_pixel(uint32_t aovs, const SpectralBins& bins) {
+  return field_bytes_per_pixel(aovs, bins) + sizeof(std::unique_ptr<WideSums>);
+}
+
+Film::WideSums& Film::wide(size_t p) {
+  if (!wide_[p]) {
+    wide_[p] = std::make_unique<WideSums>();
+    wide_[p]->spectral.resize(bins_.count());
+  }
+  return *wide_[p];
+}
+
 Film::FixedXyz Film::to_fixed_xyz(const Xyz& xyz) {
-  const bool valid = fixed_in_range(xyz.x) && fixed_in_range(xyz.y) && fixed_in_range(xyz.z);
+  const bool valid = std::isfinite(xyz.x) && std::isfinite(xyz.y) && std::isfinite(xyz.z);
   const double v[3] = {valid ? xyz.x : 0.f, valid ? xyz.y : 0.f, valid ? xyz.z : 0.f};
   FixedXyz f;
-  for (int c = 0; c < 3; ++c) f.value[c] = to_fixed(v[c]), f.square[c] = to_fixed(v[c] * v[c], kFixedSquareBits);
+  f.has_wide = false;
+  for (int c = 0; c < 3; ++c) {
+    const bool fixed = fixed_in_range(v[c]);
+    const double in_range = fixed ? v[c] : 0.0;
+    f.value[c] = to_fixed(in_range), f.square[c] = to_fixed(in_range * in_range, kFixedSquareBits);
+    f.wide[c] = fixed ? 0.0 : v[c];
+    f.has_wide |= !fixed;
+  }
   f.valid = valid;
   return f;
 }
@@ -40,6 +60,15 @@ bool Film::add_repeated(size_t p, const FixedXyz& xyz, uint32_t n, int replicate
     sum_[p * 3 + c] += n * xyz.value[c];
     sq_[p * 3 + c] += n * xyz.square[c];
     if (replicate != 0) second_sum_[p * 3 + c] += n * xyz.value[c];
+  }
+  if (xyz.has_wide) {
+    WideSums& w = wide(p);
+    for (int c = 0; c < 3; ++c)
+      if (xyz.wide[c] != 0) {
+        w.sum[c].add(xyz.wide[c], n);
+        w.sq[c].add(xyz.wide[c] * xyz.wide[c], n);
+        if (replicate != 0) w.second_sum[c].add(xyz.wide[c], n);
+      }
   }
   (replicate == 0 ? count_ : second_count_)[p] += n;
   return xyz.valid;
@@ -62,7 +91,11 @@ bool Film::add(size_t p, const FilmSample& s, int replicate) {
 
 void Film::add_spectral(size_t p, float lambda, double weighted_radiance) {
   const int bin = bins_.find(lambda);
-  if (bin >= 0 && fixed_in_range(weighted_radiance)) spectral_[p * bins_.count() + bin] += to_fixed(weighted_radiance);
+  if (bin < 0 || !std::isfinite(weighted_radiance)) return;
+  if (fixed_in_range(weighted_radiance))
+    spectral_[p * bins_.count() + bin] += to_fixed(weighted_radiance);
+  else
+    wide(p).spectral[bin].add(weighted_radiance);
 }
 
 void Film::merge(const Film& other) {
@@ -72,44 +105,54 @@ void Film::merge(const Film& other) {
   add(sum_, other.sum_), add(sq_, other.sq_), add(count_, other.count_), add(second_sum_, other.second_sum_),
       add(second_count_, other.second_count_), add(aov_, other.aov_), add(spectral_, other.spectral_),
       add(splat_, other.splat_);
+  other.visit_wide([&](size_t p, const WideSums& from) {
+    WideSums& into = wide(p);
+    for (int c = 0; c < 3; ++c)
+      into.sum[c] += from.sum[c], into.sq[c] += from.sq[c], into.second_sum[c] += from.second_sum[c],
+          into.splat[c] += from.splat[c];
+    for (size_t b = 0; b < into.spectral.size(); ++b) into.spectral[b] += from.spectral[b];
+  });
 }
 
-void Film::add_splats(const std::vector<Fixed>& xyz_sums) {
-  for (size_t i = 0; i < splat_.size(); ++i) splat_[i] += xyz_sums[i];
+void Film::add_splats(const SplatBuffer& splats) {
+  const std::vector<Fixed>& sums = splats.sums();
+  for (size_t i = 0; i < splat_.size(); ++i) splat_[i] += sums[i];
+  for (const SplatBuffer::WideSplat& s : splats.wide()) {
+    WideSums& w = wide(s.pixel);
+    const float v[3] = {s.xyz.x, s.xyz.y, s.xyz.z};
+    for (int c = 0; c < 3; ++c) w.splat[c].add(v[c]);
+  }
 }
 
 double Film::mean(size_t p, int c) const {
-  return to_double(sum_[p * 3 + c] + (splat_.empty() ? 0 : splat_[p * 3 + c])) / all_samples(p);
+  const double wide = wide_value(p, [c](const WideSums& w) { return w.sum[c]; }) +
+                      wide_value(p, [c](const WideSums& w) { return w.splat[c]; });
+  return (to_double(sum_[p * 3 + c] + (splat_.empty() ? 0 : splat_[p * 3 + c])) + wide) / all_samples(p);
 }
 
 double Film::replicate_mean(size_t p, int c, int replicate) const {
-  const double second = to_double(second_sum_[p * 3 + c]);
+  const double second =
+      to_double(second_sum_[p * 3 + c]) + wide_value(p, [c](const WideSums& w) { return w.second_sum[c]; });
   if (replicate == 1) return second_count_[p] > 0 ? second / second_count_[p] : 0.0;
-  return count_[p] > 0 ? (to_double(sum_[p * 3 + c]) - second) / count_[p] : 0.0;
+  const double all = to_double(sum_[p * 3 + c]) + wide_value(p, [c](const WideSums& w) { return w.sum[c]; });
+  return count_[p] > 0 ? (all - second) / count_[p] : 0.0;
 }
 
 // s²/n with s² = (Σy² − (Σy)²/n) / (n − 1), the unbiased sample variance, from the exact sums.
 double Film::variance_of_mean(size_t p, int c) const {
   const uint32_t n = count_[p] + second_count_[p];
   if (n < 2) return 0.0;
-  const double sy = to_double(sum_[p * 3 + c]), sy2 = to_double(sq_[p * 3 + c], kFixedSquareBits);
+  const double sy = to_double(sum_[p * 3 + c]) + wide_value(p, [c](const WideSums&w) { return w.sum[c]; }),
+               sy2 = to_double(sq_[p * 3 + c], kFixedSquareBits) +
+                     wide_value(p, [c](const WideSums&w) { return w.sq[c]; });
   return std::max(0.0, (sy2 - sy * sy / n) / (double(n - 1) * n));
 }
 
-// Per-pixel means of `fields` consecutive sums per pixel, each divided by the pixel's count.
-std::vector<float> Film::means(const std::vector<Fixed>& sums, int fields, const std::vector<double>& scale) const {
-  std::vector<float> out(sums.size());
-  for (size_t p = 0; p < pixel_count(); ++p)
-    for (int f = 0; f < fields; ++f)
-      out[p * fields + f] = float(to_double(sums[p * fields + f]) / all_samples(p) * (scale.empty() ? 1.0 : scale[f]));
-  return out;
-}
-
 std::vector<float> Film::xyz_image() const {
-  if (splat_.empty()) return means(sum_, 3);
-  std::vector<Fixed> total = sum_;
-  for (size_t i = 0; i < total.size(); ++i) total[i] += splat_[i];
-  return means(total, 3);
+  std::vector<float> out(pixel_count() * 3);
+  for (size_t p = 0; p < pixel_count(); ++p)
+    for (int c = 0; c < 3; ++c) out[p * 3 + c] = float(mean(p, c));
+  return out;
 }
 
 std::vector<float> Film::albedo_image() const {
@@ -142,9 +185,15 @@ std::vector<float> Film::depth_image() const {
 std::vector<float> Film::spectral_image() const {
   // Each lane's estimate L(λ)/p(λ) integrates L over the whole range; the part in a bin,
   // divided by the bin's width, is the bin's mean spectral radiance.
-  std::vector<double> inv_width(bins_.count());
-  for (int i = 0; i < bins_.count(); ++i) inv_width[i] = 1.0 / bins_.width(i);
-  return means(spectral_, bins_.count(), inv_width);
+  const int bins = bins_.count();
+  std::vector<float> out(spectral_.size());
+  for (size_t p = 0; p < pixel_count(); ++p)
+    for (int b = 0; b < bins; ++b) {
+      const double sum =
+          to_double(spectral_[p * bins + b]) + wide_value(p, [b](const WideSums& w) { return w.spectral[b]; });
+      out[p * bins + b] = float(sum / all_samples(p) * (1.0 / bins_.width(b)));
+    }
+  return out;
 }
 
 }  // namespace prism

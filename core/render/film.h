@@ -8,16 +8,20 @@
 // integers add associatively. So a film is a pure function of WHICH samples each pixel took,
 // whatever their order, the thread count, the pass split, a save and reload in between, or a
 // split into sample ranges and tiles rendered apart and merged (Film::merge): the merged
-// image equals the single render bit for bit. A sample whose XYZ lies outside the fixed-point
-// range (|value| >= kFixedLimit) counts as invalid, like NaN and Inf, and is added as 0.
+// image equals the single render bit for bit. Every finite sample is added: a value beyond the
+// fixed-point range (|value| >= kFixedLimit) goes, rounded to an integer, into the pixel's wide
+// sums (WideSum), made for the pixels that meet one. A NaN or infinite estimate counts as invalid
+// and is added as 0.
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/base/vec.h"
 #include "core/render/fixed_point.h"
 #include "core/render/spectral_bins.h"
+#include "core/render/splat_buffer.h"
 #include "spectral/rgb.h"
 
 namespace prism {
@@ -47,8 +51,10 @@ class Film {
   Film(int width, int height, uint32_t aovs = 0, SpectralBins bins = {});
 
   // Bytes of sums and counts per pixel of a film made with these aovs and bins (what the
-  // constructor allocates), for refusing a frame that would not fit before allocating it.
+  // constructor allocates), for refusing a frame that would not fit before allocating it; and of
+  // the fixed-point fields alone (what a checkpoint stores per pixel, visit_fields).
   static uint64_t bytes_per_pixel(uint32_t aovs, const SpectralBins& bins);
+  static uint64_t field_bytes_per_pixel(uint32_t aovs, const SpectralBins& bins);
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -56,14 +62,16 @@ class Film {
   uint32_t aovs() const { return aovs_; }
   const SpectralBins& bins() const { return bins_; }
 
-  // Adds one sample of pixel p (index y·width + x) from the sampler's replicate 0 or 1. A NaN,
-  // Inf or out-of-range estimate counts as a sample of 0; returns false for it (the caller
-  // counts it as invalid).
+  // Adds one sample of pixel p (index y·width + x) from the sampler's replicate 0 or 1. A NaN or
+  // Inf estimate counts as a sample of 0; returns false for it (the caller counts it as invalid).
+  // Only the thread that renders pixel p may add to it.
   bool add(size_t p, const FilmSample& s, int replicate = 0);
   // One sample value rounded to the film's integers once, for adding it many times.
   struct FixedXyz {
-    Fixed value[3], square[3];
-    bool valid;  // false for a NaN, Inf or out-of-range value, whose integers are those of 0
+    Fixed value[3], square[3];  // 0 for a channel beyond the fixed-point range, which `wide` holds
+    double wide[3];             // the channels beyond it (0 for the others)
+    bool has_wide;
+    bool valid;  // false for a NaN or Inf value, whose integers are those of 0
   };
   static FixedXyz to_fixed_xyz(const Xyz& xyz);
   // Adds n samples of one value that hit no surface (zero first-hit AOVs): to the bit what n calls
@@ -88,8 +96,8 @@ class Film {
   // Mean of channel c (0, 1, 2: X, Y, Z) of all pixel p's samples, and s²/n with s² their
   // unbiased sample variance: the variance of that mean if the samples were independent.
   double mean(size_t p, int c) const;
-  // Adds light-tracing splat sums, 3 (XYZ) per pixel (a film made with kFilmSplats).
-  void add_splats(const std::vector<Fixed>& xyz_sums);
+  // Adds a thread's light-tracing splats (a film made with kFilmSplats).
+  void add_splats(const SplatBuffer& splats);
   double variance_of_mean(size_t p, int c) const;
   // Mean of channel c of the samples of pixel p's replicate 0 and of its replicate 1.
   double replicate_mean(size_t p, int c, int replicate) const;
@@ -117,12 +125,29 @@ class Film {
     visit(sum_), visit(sq_), visit(count_), visit(second_sum_), visit(second_count_), visit(aov_), visit(spectral_),
         visit(splat_);
   }
+  // The wide sums of the pixels that have them (see WideSums), for checkpoint files: visit(p,
+  // sums) for each such pixel p, in pixel order; wide(p) makes pixel p's to read them into.
+  struct WideSums {
+    WideSum sum[3], sq[3], second_sum[3], splat[3];
+    std::vector<WideSum> spectral;  // one per bin, or none
+    bool operator==(const WideSums&) const = default;
+  };
+  template <typename Visit>
+  void visit_wide(Visit&& visit) const {
+    for (size_t p = 0; p < wide_.size(); ++p)
+      if (wide_[p]) visit(p, *wide_[p]);
+  }
+  WideSums& wide(size_t p);
 
  private:
   static constexpr int kAovFields = 8;  // albedo XYZ, normal XYZ, depth sum, hit count
 
   double all_samples(size_t p) const { return std::max(count_[p] + second_count_[p], 1u); }
-  std::vector<float> means(const std::vector<Fixed>& sums, int fields, const std::vector<double>& scale = {}) const;
+  // Field f of pixel p's wide sums, 0 where it has none.
+  template <typename Field>
+  double wide_value(size_t p, const Field& field) const {
+    return wide_[p] ? field(*wide_[p]).to_double() : 0.0;
+  }
 
   int width_, height_;
   uint32_t aovs_;
@@ -135,6 +160,21 @@ class Film {
   std::vector<Fixed> aov_;              // kAovFields sums per pixel, when AOVs are on
   std::vector<Fixed> spectral_;         // bins_.count() sums per pixel
   std::vector<Fixed> splat_;            // XYZ splat sums per pixel, with kFilmSplats
+  // Per pixel, the sums of its values beyond the fixed-point range, made at the first such value:
+  // the sums above are the fixed-point values' only. Each pixel's are its own thread's to make.
+  // (A film copies like a value: the copy gets its own wide sums.)
+  struct WidePixels : std::vector<std::unique_ptr<WideSums>> {
+    using vector::vector;
+    WidePixels(const WidePixels& other) : vector(other.size()) { *this = other; }
+    WidePixels(WidePixels&&) = default;
+    WidePixels& operator=(WidePixels&&) = default;
+    WidePixels& operator=(const WidePixels& other) {
+      resize(other.size());
+      for (size_t p = 0; p < size(); ++p) (*this)[p] = other[p] ? std::make_unique<WideSums>(*other[p]) : nullptr;
+      return *this;
+    }
+  };
+  WidePixels wide_;
 };
 
 }  // namespace prism

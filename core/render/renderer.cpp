@@ -215,7 +215,7 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
     }
     if (splats)
       for (SplatBuffer& b : *splats) {
-        state.film.add_splats(b.sums());
+        state.film.add_splats(b);
         b.clear();
       }
     state.stats.seconds = seconds_before + seconds_since(start);
