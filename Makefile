@@ -11,7 +11,8 @@ SPP ?= 12
 SIZE ?= 512
 
 PACKAGES := cmake make g++ pkg-config python3 libopenexr-dev libopencolorio-dev libtinygltf-dev nlohmann-json3-dev \
-            libstb-dev catch2 libtbb-dev libcli11-dev libfmt-dev libdraco-dev libmeshoptimizer-dev libwebp-dev
+            libstb-dev catch2 libtbb-dev libcli11-dev libfmt-dev libdraco-dev libmeshoptimizer-dev libwebp-dev \
+            libyaml-cpp-dev
 FUZZ_PACKAGES := clang-14 libclang-rt-14-dev
 ASAN_DIR ?= build-asan
 FUZZ_DIR ?= build-fuzz

@@ -52,6 +52,8 @@ find_package(meshoptimizer CONFIG QUIET)  # EXT_/KHR_meshopt_compression
 prism_require(meshoptimizer_FOUND libmeshoptimizer-dev)
 pkg_check_modules(WEBP QUIET IMPORTED_TARGET libwebp)  # EXT_texture_webp
 prism_require(WEBP_FOUND libwebp-dev)
+find_package(yaml-cpp CONFIG QUIET)  # refractiveindex.info's YAML pages (core/scene/refractive_index_file)
+prism_require(yaml-cpp_FOUND libyaml-cpp-dev)
 if(PRISM_BUILD_TESTS)
   find_package(Catch2 2 CONFIG QUIET)
   prism_require(Catch2_FOUND catch2)

@@ -36,7 +36,7 @@ Bsdf<N> make_bsdf(const Material& m, const SurfacePoint& at, const SampledWavele
       constant.base_color && !vertex_colored ? *constant.base_color : RgbAlbedoSpectrum(p.base_color);
   if (front)
     for (int i = 0; i < N; ++i) n_front[i] = ior(front->ior, lambda[i]);
-  if (p.metallic < 1 || !material.metal) color = base(lambda);
+  if (p.metallic < 1 || !material.metal) color = material.base_spectrum(p.base_color, base, lambda);
 
   // The metal, relative to the surrounding medium.
   SampledSpectrum<N> n, k;

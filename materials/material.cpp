@@ -98,6 +98,13 @@ std::optional<Spectrum> Material::emission_at(const SurfacePoint& at) const {
   return RgbIlluminantSpectrum(rgb);
 }
 
+float Material::emission_scale(const SurfacePoint& at) const {
+  if (!emission_texture) return 1.f;
+  const auto c = emission_texture->lookup(at.uv[emission_texture->texcoord], true);
+  const float full = luminance(emission_rgb);
+  return full > 0 ? luminance({emission_rgb.r * c[0], emission_rgb.g * c[1], emission_rgb.b * c[2]}) / full : 0.f;
+}
+
 float Material::opacity(const SurfacePoint& at) const {
   const auto* p = std::get_if<PbrMaterial>(&kind);
   if (alpha_mode == AlphaMode::opaque || !p) return 1.f;

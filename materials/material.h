@@ -107,7 +107,11 @@ struct PbrMaterial {
   Rgb specular_color{1, 1, 1};      // KHR_materials_specular's colour: scales F0 (not F90)
   bool energy_compensation = true;  // multiple scattering between microfacets added back (Turquin 2019)
   Dielectric dielectric;
-  std::optional<MeasuredMetal> metal;                 // replaces the base-colour metal when set
+  std::optional<MeasuredMetal> metal;  // replaces the base-colour metal when set
+  // The base's spectral reflectance given in the file (extras "reflectance"), in place of
+  // base_color, which is then white: a texture or vertex colour multiplies it as its upsampled
+  // reflectance (base_spectrum).
+  std::optional<Spectrum> base_reflectance;
   std::optional<Texture> base_color_texture;          // sRGB; RGB × base_color, A × alpha
   std::optional<Texture> metallic_roughness_texture;  // linear; B × metallic, G × roughness
   std::optional<Texture> transmission_texture;        // linear; R × transmission
@@ -140,6 +144,18 @@ struct PbrMaterial {
   }
   // The direction of anisotropy in tangent space (x along the tangent, y the bitangent), unit.
   Vec2f anisotropy_direction(const SurfacePoint& at) const;
+  // The base's reflectance at a path's wavelengths, where the inputs are `base_color`
+  // (inputs(at).base_color: factor × texture × vertex colour) and `upsampled` is that colour as a
+  // spectrum: the file's spectrum, times `upsampled` where a texture or vertex colour varies it
+  // (base_color not white), else `upsampled` alone.
+  template <int N>
+  SampledSpectrum<N> base_spectrum(Rgb base_color, const RgbAlbedoSpectrum& upsampled,
+                                   const SampledWavelengths<N>& lambda) const {
+    if (!base_reflectance) return upsampled(lambda);
+    SampledSpectrum<N> r = sample(*base_reflectance, lambda);
+    if (base_color != Rgb{1, 1, 1}) r *= upsampled(lambda);
+    return r;
+  }
 
   static PbrMaterial glass(Dielectric d, float roughness = 0);
   static PbrMaterial metal_of(MeasuredMetal m, float roughness = 0);
@@ -171,14 +187,21 @@ struct Material {
   float normal_scale = 1;
   std::optional<Texture> emission_texture{};  // sRGB; multiplies the emission's RGB
   Rgb emission_rgb{0, 0, 0};                  // emissiveFactor × strength (for a textured emission)
+  // Whether `emission` is a spectrum the file gives (extras "emission"), of the luminance of
+  // emission_rgb, rather than emission_rgb upsampled: a texture then scales its luminance.
+  bool spectral_emission = false;
 
-  // Emitted radiance at a point (with the texture, if any), or nothing.
+  // Emitted radiance at a point (with the texture, if any), or nothing: RGB emission only.
   std::optional<Spectrum> emission_at(const SurfacePoint& at) const;
-  // The same for the path's wavelengths; 0 where the material does not emit. (Which side emits is
-  // the caller's check: AreaLight::emits_towards.)
+  // A spectral emission's scale at a point: the luminance of emission_rgb × texel over that of
+  // emission_rgb (1 without a texture).
+  float emission_scale(const SurfacePoint& at) const;
+  // Emitted radiance for the path's wavelengths; 0 where the material does not emit. (Which side
+  // emits is the caller's check: AreaLight::emits_towards.)
   template <int N>
   SampledSpectrum<N> emitted(const SurfacePoint& at, const SampledWavelengths<N>& lambda) const {
     if (!emission_texture) return emission ? sample(*emission, lambda) : SampledSpectrum<N>(0.f);
+    if (spectral_emission) return sample(*emission, lambda) * emission_scale(at);
     const auto e = emission_at(at);
     return e ? sample(*e, lambda) : SampledSpectrum<N>(0.f);
   }

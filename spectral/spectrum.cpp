@@ -7,16 +7,17 @@
 
 namespace prism {
 
-TabulatedSpectrum::TabulatedSpectrum(std::vector<float> lambdas, std::vector<float> values)
-    : lambdas_(std::move(lambdas)), values_(std::move(values)) {
+TabulatedSpectrum::TabulatedSpectrum(std::vector<float> lambdas, std::vector<float> values, Outside outside)
+    : lambdas_(std::move(lambdas)), values_(std::move(values)), outside_(outside) {
   if (lambdas_.empty() || lambdas_.size() != values_.size())
     fail("tabulated spectrum needs as many values as wavelengths (got {} and {})", lambdas_.size(), values_.size());
   if (!std::is_sorted(lambdas_.begin(), lambdas_.end())) fail("tabulated spectrum wavelengths must increase");
 }
 
 float TabulatedSpectrum::operator()(float lambda) const {
-  if (lambda <= lambdas_.front()) return values_.front();
-  if (lambda >= lambdas_.back()) return values_.back();
+  const bool hold = outside_ == Outside::hold;
+  if (!(lambda > lambdas_.front())) return hold || lambda == lambdas_.front() ? values_.front() : 0.f;  // NaN too
+  if (!(lambda < lambdas_.back())) return hold || lambda == lambdas_.back() ? values_.back() : 0.f;
   const size_t i = size_t(std::upper_bound(lambdas_.begin(), lambdas_.end(), lambda) - lambdas_.begin()) - 1;
   const float t = (lambda - lambdas_[i]) / (lambdas_[i + 1] - lambdas_[i]);
   return values_[i] + t * (values_[i + 1] - values_[i]);  // exact where neighbours are equal

@@ -49,17 +49,21 @@ RowPlaces<N> locate_rows(const SampledWavelengths<N>& lambda, float first, int r
   return p;
 }
 
-// Linear interpolation between samples; beyond the first / last sample the end value holds
-// (measured tables that end short of 360 or 830 nm are extended flat, not dropped to 0).
+// Linear interpolation between samples. Beyond the first / last sample the end value holds by
+// default (measured optical constants that end short of 360 or 830 nm are extended flat), or the
+// spectrum is 0 there (Outside::zero: emission and reflectance tables, which stop where the light does).
 class TabulatedSpectrum {
  public:
-  TabulatedSpectrum(std::vector<float> lambdas, std::vector<float> values);
+  enum class Outside { hold, zero };
+  TabulatedSpectrum(std::vector<float> lambdas, std::vector<float> values, Outside outside = Outside::hold);
   float operator()(float lambda) const;
   const std::vector<float>& lambdas() const { return lambdas_; }
   const std::vector<float>& values() const { return values_; }
+  Outside outside() const { return outside_; }
 
  private:
   std::vector<float> lambdas_, values_;
+  Outside outside_;
 };
 
 // Values at every integer nm from lambda_min; linear in between; 0 outside.
@@ -130,7 +134,9 @@ struct RgbUnboundedSpectrum {
 };
 
 struct RgbIlluminantSpectrum {
-  explicit RgbIlluminantSpectrum(Rgb rgb);
+  explicit RgbIlluminantSpectrum(Rgb rgb);  // over D65
+  // Over another white of luminance 1 (which must outlive the spectrum).
+  RgbIlluminantSpectrum(Rgb rgb, const DenselySampledSpectrum* white) : shape(rgb), illuminant(white) {}
   float operator()(float lambda) const;
   // All lanes at once; out of line (spectrum.cpp, N = 1, 4, 8; other widths go lane by lane in
   // sample()): inlined into every light sample's caller, it took GCC's inlining budget from the
@@ -139,7 +145,7 @@ struct RgbIlluminantSpectrum {
   requires(N == 1 || N == 4 || N == 8) SampledSpectrum<N>
   operator()(const SampledWavelengths<N>& lambda) const;
   RgbUnboundedSpectrum shape;
-  const DenselySampledSpectrum* illuminant;  // D65 with luminance Y = 1
+  const DenselySampledSpectrum* illuminant;  // D65 with luminance Y = 1, or another white
 };
 
 // σ_a(λ) = −ln T(λ) / d, T the reflectance-like upsampling of `transmittance` (RgbAlbedoSpectrum):

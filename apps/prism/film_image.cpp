@@ -1,6 +1,11 @@
 #include "apps/prism/film_image.h"
 
+#include <charconv>
+
+#include "core/base/error.h"
 #include "core/render/error_estimate.h"
+#include "spectral/cie.h"
+#include "spectral/named_spectra.h"
 
 namespace prism {
 
@@ -47,15 +52,34 @@ std::vector<ExrChannel> extra_channels(const Film& film, const std::string& colo
   return channels;
 }
 
-ExrImage film_image(const Film& film, const std::string& colorspace) {
+ExrImage film_image(const Film& film, const std::string& colorspace, const WhiteBalance* white_balance) {
   ExrImage image{film.width(),
                  film.height(),
                  film.xyz_image(),
                  ColorPipeline::standard().chromaticities(colorspace),
                  {},
                  extra_channels(film, colorspace)};
+  if (white_balance) white_balance->apply(image.rgb.data(), image.rgb.size() / 3);
   ColorPipeline::standard().convert(ColorPipeline::kXyz, colorspace, image.rgb.data(), image.rgb.size() / 3);
   return image;
+}
+
+std::optional<WhiteBalance> white_balance_option(const std::string& text) {
+  if (text.empty() || text == "none") return std::nullopt;
+  double kelvin = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), kelvin);
+  if (ec == std::errc() && end == text.data() + text.size()) {
+    if (!(kelvin >= 1000 && kelvin <= 40000))
+      fail("--white-balance {}: a colour temperature must be 1000-40000 K", text);
+    return WhiteBalance::to_d65(fmt::format("{:g} K", kelvin), spectrum_to_xyz(BlackbodySpectrum(float(kelvin))));
+  }
+  const auto illuminant = named_illuminant(text);
+  if (!illuminant) {
+    std::string names;
+    for (const std::string& n : named_illuminants()) names += (names.empty() ? "" : ", ") + n;
+    fail("--white-balance {}: not a named illuminant ({}), a temperature in kelvin or none", text, names);
+  }
+  return WhiteBalance::to_d65(text, spectrum_to_xyz(*illuminant));
 }
 
 }  // namespace prism

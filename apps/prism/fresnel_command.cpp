@@ -3,11 +3,14 @@
 // colour space, and a plot of R(λ).
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "apps/prism/commands.h"
 #include "apps/prism/plot.h"
 #include "core/base/error.h"
+#include "core/scene/refractive_index_file.h"
 #include "materials/catalogue.h"
 #include "materials/fresnel.h"
 #include "spectral/cie.h"
@@ -18,7 +21,7 @@ namespace prism {
 namespace {
 
 struct FresnelArgs {
-  std::vector<std::string> materials;
+  std::vector<std::string> materials, nk_files;
   std::string nk, wavelengths = "450,550,650", angles = "0,45,60,80,89", format = "table", plot;
   std::string colorspace = ColorPipeline::kDefaultOutput;
 };
@@ -68,7 +71,25 @@ std::vector<Reflector> reflectors(const FresnelArgs& args) {
     out.push_back({fmt::format("n={:g} k={:g}", nk[0], nk[1]),
                    [n = nk[0], k = nk[1]](float c, float) { return fresnel_conductor_polarized(c, n, k); }, nk[1] > 0});
   }
-  if (out.empty()) fail("name a catalogue --material or give --nk N,K (see --list)");
+  for (const std::string& file : args.nk_files) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) fail("--nk-file {}: cannot read it", file);
+    std::stringstream text;
+    text << in.rdbuf();
+    const OpticalConstants c = read_refractive_index(text.str(), file);
+    const std::string label = std::filesystem::path(file).filename().string();
+    if (c.k) {  // a conductor (or an absorbing dielectric): n + ik
+      const Spectrum n = index_spectrum(c.n), k = *c.k;
+      out.push_back(
+          {label,
+           [n, k](float cos, float l) { return fresnel_conductor_polarized(cos, evaluate(n, l), evaluate(k, l)); },
+           true});
+    } else {
+      out.push_back(
+          {label, [n = c.n](float cos, float l) { return fresnel_dielectric_polarized(cos, ior(n, l)); }, false});
+    }
+  }
+  if (out.empty()) fail("name a catalogue --material, give --nk N,K or --nk-file FILE (see --list)");
   return out;
 }
 
@@ -148,6 +169,8 @@ void add_fresnel_command(CLI::App& app) {
   cmd->add_option("-m,--material", args->materials, "Catalogue materials (repeat or comma-separate), e.g. Cu,Au,N-BK7")
       ->delimiter(',');
   cmd->add_option("--nk", args->nk, "A complex index N,K instead of (or besides) catalogue materials");
+  cmd->add_option("--nk-file", args->nk_files,
+                  "Optical constants in a refractiveindex.info file (its CSV or YAML download; repeat for more)");
   cmd->add_option("--wavelengths", args->wavelengths, "Wavelengths in nm, comma-separated")->default_val("450,550,650");
   cmd->add_option("--angles", args->angles, "Angles of incidence in degrees, comma-separated")
       ->default_val("0,45,60,80,89");

@@ -16,14 +16,15 @@ namespace {
 
 struct MergeArgs {
   std::vector<std::string> parts;
-  std::string output, colorspace = ColorPipeline::kDefaultOutput;
+  std::string output, colorspace = ColorPipeline::kDefaultOutput, white_balance = "none";
   bool half = false;
 };
 
 void run(const MergeArgs& args) {
   const std::string colorspace = ColorPipeline::standard().canonical_name(args.colorspace);
+  const std::optional<WhiteBalance> balance = white_balance_option(args.white_balance);
   const RenderState merged = merge_parts({args.parts.begin(), args.parts.end()});
-  ExrImage image = film_image(merged.film, colorspace);
+  ExrImage image = film_image(merged.film, colorspace, balance ? &*balance : nullptr);
   image.metadata = {
       {"software", std::string("Prism " PRISM_VERSION)},
       {"prism.spp", merged.part.total},
@@ -34,6 +35,7 @@ void run(const MergeArgs& args) {
       {"prism.colorSpace", colorspace},
       {"prism.estimatedRelRmse", ErrorEstimate(merged.film).rel_rmse()},
   };
+  if (balance) image.metadata.push_back({"prism.whiteBalance", balance->name});
   write_exr(args.output, image, args.half);
   std::printf("wrote %s (%dx%d, %d spp from %zu parts, %s)\n", args.output.c_str(), merged.film.width(),
               merged.film.height(), merged.part.total, args.parts.size(), colorspace.c_str());
@@ -50,6 +52,9 @@ void add_merge_command(CLI::App& app) {
   cmd->add_option("--colorspace", args->colorspace, "Output colour space from data/ocio/config.ocio")
       ->default_val(ColorPipeline::kDefaultOutput);
   cmd->add_flag("--half", args->half, "Write 16-bit half floats instead of 32-bit floats (beauty only)");
+  cmd->add_option("--white-balance", args->white_balance,
+                  "Adapt the image so that this illuminant's white is neutral (as prism render)")
+      ->default_val("none");
   cmd->callback([args] { run(*args); });
 }
 

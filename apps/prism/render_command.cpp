@@ -14,6 +14,7 @@
 #include "apps/prism/film_image.h"
 #include "apps/prism/frame_sequence.h"
 #include "apps/prism/scene_setup.h"
+#include "core/base/checksum.h"
 #include "core/base/clock.h"
 #include "core/base/error.h"
 #include "core/base/interrupt.h"
@@ -30,7 +31,7 @@ namespace {
 struct RenderArgs {
   SceneArgs scene;
   std::string output, preview, colorspace = ColorPipeline::kDefaultOutput, aovs, spectral_bins, samples, crop;
-  std::string integrator = "auto";
+  std::string integrator = "auto", white_balance = "none";
   bool half = false, quiet = false, verbose = false, resume = false;
   double checkpoint = 0;
   std::string frames;  // "A:B"
@@ -72,6 +73,17 @@ void parse_part(const RenderArgs& args, RenderOptions& o) {
   }
 }
 
+// The environment's spectra as rendered (its white's, with --env-spectrum): what a file it names holds.
+uint64_t environment_hash(const Scene& scene) {
+  Checksum sum;
+  const auto add = [&](const DenselySampledSpectrum& s) {
+    sum.add(s.values().data(), s.values().size() * sizeof(float));
+  };
+  if (scene.environment) add(densely_sampled(*scene.environment));
+  if (scene.environment_map && scene.environment_map->white) add(*scene.environment_map->white);
+  return sum.h;
+}
+
 // Everything that shapes the image but the sample count: a checkpoint resumes, and parts merge,
 // only with these. The scene and the environment map are named by their file names and the hash
 // of their content (the scene's file and those it reads; the map's values), not by their paths:
@@ -82,7 +94,8 @@ std::string fingerprint(const RenderArgs& args, const Scene& scene, const Camera
   const SceneArgs& s = args.scene;
   const std::optional<EnvironmentMapDesc>& env_map = scene.environment_map;
   return fmt::format(
-      "scene={} scene-hash={:016x} time={} env={} env-map={} env-map-hash={:016x} env-rotate={} env-scale={} camera={} "
+      "scene={} scene-hash={:016x} time={} env={} env-map={} env-map-hash={:016x} env-rotate={} env-scale={} "
+      "env-spectrum={} env-white-hash={:016x} camera={} "
       "camera-hash={:016x} size={}x{} "
       "integrator={} merge-radius={} "
       "seed={} sampler={} "
@@ -90,9 +103,10 @@ std::string fingerprint(const RenderArgs& args, const Scene& scene, const Camera
       "energy-compensation={} gltf-scene={} variant={} animation={}",
       scene.source.filename().string(), scene.source_hash, time ? fmt::format("{}", *time) : "-", s.env,
       std::filesystem::path(s.env_map).filename().string(), env_map ? env_map->hash : 0, s.env_rotate, s.env_scale,
-      s.camera, camera.hash(), camera.width(), camera.height(), integrator(o.integrator).name, o.merge_radius, o.seed,
-      sampler_name(o.sampler), o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf", o.noise_threshold,
-      o.aovs, o.spectral_bins.to_string(), s.energy_compensation, s.gltf.scene ? fmt::format("{}", *s.gltf.scene) : "-",
+      std::filesystem::path(s.env_spectrum).filename().string(), environment_hash(scene), s.camera, camera.hash(),
+      camera.width(), camera.height(), integrator(o.integrator).name, o.merge_radius, o.seed, sampler_name(o.sampler),
+      o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf", o.noise_threshold, o.aovs,
+      o.spectral_bins.to_string(), s.energy_compensation, s.gltf.scene ? fmt::format("{}", *s.gltf.scene) : "-",
       s.gltf.variant, s.gltf.animation);
 }
 
@@ -199,7 +213,8 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
     return true;
   }
   const SampleCounts counts = sample_counts(film);
-  ExrImage image = film_image(film, colorspace);
+  const std::optional<WhiteBalance> balance = white_balance_option(args.white_balance);
+  ExrImage image = film_image(film, colorspace, balance ? &*balance : nullptr);
   image.metadata = {
       {"software", std::string("Prism " PRISM_VERSION)},
       {"prism.scene", args.scene.scene},
@@ -222,6 +237,7 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
       {"prism.estimatedRelRmse", ErrorEstimate(film).rel_rmse()},
       {"prism.interrupted", int(result.interrupted)},
   };
+  if (balance) image.metadata.push_back({"prism.whiteBalance", balance->name});
   if (options.noise_threshold > 0) image.metadata.push_back({"prism.noiseThreshold", options.noise_threshold});
   if (options.time_limit > 0) image.metadata.push_back({"prism.timeLimit", options.time_limit});
   if (time) image.metadata.push_back({"prism.time", *time});
@@ -237,6 +253,7 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
 
   if (!preview.empty()) {
     std::vector<float> display = film.xyz_image();
+    if (balance) balance->apply(display.data(), display.size() / 3);
     ColorPipeline::standard().xyz_to_display(ColorPipeline::kDefaultDisplay, ColorPipeline::kDefaultView,
                                              display.data(), display.size() / 3);
     write_png(preview, film.width(), film.height(), display);
@@ -260,6 +277,7 @@ void run(const RenderArgs& args) {
   if (args.verbose) log::set_level(log::Level::verbose);
   interrupt::install();
   ColorPipeline::standard().canonical_name(args.colorspace);  // a bad name fails before any work
+  white_balance_option(args.white_balance);                   // so does a bad white balance
   if (args.frames.empty()) {
     check_output(args.output, "-o");
     if (!args.preview.empty()) check_output(args.preview, "--preview");
@@ -335,6 +353,10 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--colorspace", args->colorspace, "Output colour space from data/ocio/config.ocio")
       ->default_val(ColorPipeline::kDefaultOutput);
   cmd->add_option("--preview", args->preview, "Also write an sRGB preview PNG through the OCIO display view");
+  cmd->add_option("--white-balance", args->white_balance,
+                  "Adapt the image so that this illuminant's white is neutral (Bradford): a named illuminant (A, "
+                  "D50, F11, LED-B3, ...), a temperature in kelvin, or none (scene-referred)")
+      ->default_val("none");
   cmd->add_flag("--half", args->half, "Write 16-bit half floats instead of 32-bit floats (beauty only)");
   cmd->add_flag("-q,--quiet", args->quiet, "Only warnings and errors; no progress bar");
   cmd->add_flag("-v,--verbose", args->verbose, "Also log every pass with its estimated error");

@@ -13,6 +13,7 @@
 #include "core/base/log.h"
 #include "core/render/environment_map.h"
 #include "core/scene/gltf_loader.h"
+#include "core/scene/spectrum_input.h"
 #include "spectral/cie.h"
 
 namespace prism {
@@ -129,6 +130,9 @@ void add_scene_options(CLI::App* cmd, SceneArgs& args) {
   cmd->add_option("--env-scale", args.env_scale, "Multiply the environment image by S")
       ->needs(env_map)
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--env-spectrum", args.env_spectrum,
+                  "The spectrum of the environment's white (--env or --env-map): a named illuminant (e.g. A, D50, "
+                  "F11, LED-B3), blackbody:KELVIN, or a CSV file of nm,value (default: D65)");
   cmd->add_option("--max-memory", args.max_memory_gb,
                   "Refuse scenes and images estimated to need more than GB gigabytes (default: physical memory)")
       ->check(CLI::PositiveNumber);
@@ -233,13 +237,27 @@ PreparedScene prepare_scene(const SceneArgs& args, bool keep_file) {
     log::info("environment map {}: {}x{}", env_map->file, env_map->image.width, env_map->image.height);
   }
 
+  // The environment's white: the spectrum of RGB (1, 1, 1), at luminance 1.
+  std::optional<DenselySampledSpectrum> white;
+  if (!args.env_spectrum.empty()) {
+    if (!env && !env_map) fail("--env-spectrum {}: needs --env or --env-map", args.env_spectrum);
+    white = densely_sampled(spectrum_with_luminance(
+        parse_spectrum_argument(args.env_spectrum, SpectrumUse::emission, "--env-spectrum"), 1.0));
+  }
+  if (env_map) env_map->white = white;
+
   PreparedScene p;
   auto t0 = std::chrono::steady_clock::now();
   GltfOptions gltf = args.gltf;
   gltf.max_instances = max_memory_bytes(args) / kBytesPerInstance;
   p.gltf = std::make_unique<GltfScene>(args.scene, gltf);
   Scene& scene = p.gltf->scene();
-  if (env) scene.environment = RgbIlluminantSpectrum(*env);
+  if (env) {
+    if (white)  // the colour's shape over the white, at every nm (the world reads it so anyway)
+      scene.environment = densely_sampled(RgbIlluminantSpectrum(*env, &*white));
+    else
+      scene.environment = RgbIlluminantSpectrum(*env);
+  }
   scene.environment_map = std::move(env_map);
   if (!args.energy_compensation)
     for (Material& m : scene.materials)

@@ -12,7 +12,7 @@
 namespace prism {
 
 struct SceneArgs {
-  std::string scene, env, env_map;
+  std::string scene, env, env_map, env_spectrum;
   float env_rotate = 0, env_scale = 1;
   int width = 0, height = 0, camera = -1;
   GltfOptions gltf;
@@ -31,7 +31,7 @@ inline constexpr uint64_t kBytesPerPixel = 256, kBytesPerInstance = 512;
 const CLI::Validator& positive_count();
 const CLI::Validator& seed_value();
 
-// The scene file (positional), --env / --env-map / --env-rotate / --env-scale, --width,
+// The scene file (positional), --env / --env-map / --env-rotate / --env-scale / --env-spectrum, --width,
 // --height, --camera, --no-energy-compensation, and the glTF choices of add_gltf_options.
 void add_scene_options(CLI::App* cmd, SceneArgs& args);
 

@@ -66,8 +66,14 @@ void first_hit(const World& world, const Ray& ray, const SampledWavelengths<N>& 
   if (const auto* d = std::get_if<DiffuseMaterial>(&m.kind)) {
     albedo = sample(d->reflectance, lambda);
   } else {
-    const RgbAlbedoSpectrum base(std::get<PbrMaterial>(m.kind).inputs(si->at).base_color);
-    for (int i = 0; i < N; ++i) albedo[i] = base(lambda[i]);
+    const PbrMaterial& pbr = std::get<PbrMaterial>(m.kind);
+    const Rgb base_color = pbr.inputs(si->at).base_color;
+    if (pbr.base_reflectance) {
+      albedo = pbr.base_spectrum(base_color, RgbAlbedoSpectrum(base_color), lambda);
+    } else {
+      const RgbAlbedoSpectrum base(base_color);
+      for (int i = 0; i < N; ++i) albedo[i] = base(lambda[i]);
+    }
   }
   for (int i = 0; i < N; ++i) albedo[i] *= cie().d65(lambda[i]);
   out.albedo = to_xyz(albedo, lambda);

@@ -7,6 +7,7 @@
 #include "core/base/error.h"
 #include "core/base/log.h"
 #include "core/render/image_output.h"
+#include "spectral/cie.h"
 
 namespace prism {
 
@@ -37,11 +38,12 @@ EnvironmentMapDesc load_environment_map(const std::filesystem::path& file, float
   Checksum hash;
   hash.add(&image.width, sizeof image.width), hash.add(&image.height, sizeof image.height);
   hash.add(image.rgb.data(), image.rgb.size() * sizeof(float));
-  return {name, std::move(image), radians(rotation_degrees), scale, hash.h};
+  return {name, std::move(image), radians(rotation_degrees), scale, hash.h, std::nullopt};
 }
 
 EnvironmentMap::EnvironmentMap(const EnvironmentMapDesc& desc)
     : image_(desc.image),
+      white_(desc.white ? &*desc.white : &cie().d65),
       scale_(desc.scale),
       cos_rotation_(std::cos(desc.rotation)),
       sin_rotation_(std::sin(desc.rotation)) {

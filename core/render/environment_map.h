@@ -41,6 +41,8 @@ class EnvironmentMap {
 
   // ∫ Y(L(ω)) dω over the sphere: the luminance the map sends towards a point.
   float luminance_integral() const { return luminance_integral_; }
+  // The spectrum of the map's white (RGB 1, 1, 1) at luminance 1: the scene's (--env-spectrum), or D65.
+  const DenselySampledSpectrum* white() const { return white_; }
 
   Vec2f uv(const Vec3f& w) const;
   Vec3f direction(Vec2f uv) const;
@@ -49,6 +51,7 @@ class EnvironmentMap {
   Rgb bilinear(Vec2f uv) const;
 
   const RgbImage& image_;
+  const DenselySampledSpectrum* white_;
   float scale_, cos_rotation_, sin_rotation_;
   PiecewiseConstant2D distribution_;
   float luminance_integral_ = 0;

@@ -189,7 +189,8 @@ struct EnvironmentLight {
 };
 
 // An environment image, importance-sampled by luminance. Each lookup's RGB becomes an
-// illuminant spectrum as RGB emission does (the upsampling table lookup is cheap).
+// illuminant spectrum as RGB emission does, over the map's white (the upsampling table lookup is
+// cheap).
 struct EnvironmentMapLight {
   const EnvironmentMap* map;
 
@@ -202,7 +203,7 @@ struct EnvironmentMapLight {
   }
   template <int N>
   SampledSpectrum<N> Le(const Vec3f& w, const SampledWavelengths<N>& lambda) const {
-    const RgbIlluminantSpectrum L(map->radiance(w));
+    const RgbIlluminantSpectrum L(map->radiance(w), map->white());
     SampledSpectrum<N> r;
     for (int i = 0; i < N; ++i) r[i] = L(lambda[i]);
     return r;

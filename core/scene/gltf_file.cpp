@@ -3,6 +3,7 @@
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "core/base/checksum.h"
@@ -17,46 +18,24 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The files a glTF may read: tinygltf asks through these callbacks for "<base>/<decoded URI>",
-// then for "./<decoded URI>" (the current folder, never allowed here).
-struct UriPolicy {
-  fs::path root;     // the scene file's folder, symlinks resolved
-  std::string base;  // the base folder as handed to tinygltf
-  bool allow_external = false;
-  std::string problem;  // the first file refused or missing, for the error message
-  Checksum content;     // of every file read (read_gltf_file)
-};
-
 bool inside(const fs::path& root, const fs::path& p) {
   return std::mismatch(root.begin(), root.end(), p.begin(), p.end()).first == root.end();
 }
 
-// The file `joined` (= base/URI) names after the policy, or an empty path with policy.problem set.
-fs::path resolve(UriPolicy& policy, const std::string& joined) {
-  if (joined.size() <= policy.base.size() || joined.compare(0, policy.base.size(), policy.base) != 0 ||
-      joined[policy.base.size()] != '/')
-    return {};  // tinygltf's fallback to the current folder
-  const std::string uri = joined.substr(policy.base.size() + 1);
-  const fs::path named = uri.front() == '/' ? fs::path(uri) : policy.root / uri;
-  std::error_code ec;
-  const fs::path resolved = fs::weakly_canonical(named, ec);
-  const auto refuse = [&](const std::string& why) {
-    if (policy.problem.empty()) policy.problem = why;
-    return fs::path();
-  };
-  if (ec) return refuse(fmt::format("URI '{}' cannot be resolved (tried {}): {}", uri, named.string(), ec.message()));
-  if (!policy.allow_external && !inside(policy.root, resolved))
-    return refuse(
-        fmt::format("URI '{}' resolves to {}, outside the scene's folder {} (--allow-external-paths allows it)", uri,
-                    resolved.string(), policy.root.string()));
-  if (!fs::exists(resolved, ec))
-    return refuse(fmt::format("URI '{}': no such file (tried {})", uri, resolved.string()));
-  if (!fs::is_regular_file(resolved, ec))
-    return refuse(fmt::format("URI '{}': {} is not a regular file", uri, resolved.string()));
-  return resolved;
+// tinygltf asks for "<base>/<decoded URI>", then for "./<decoded URI>" (the current folder, never
+// allowed here): the URI, or nothing for the latter.
+std::optional<std::string> uri_of(const SceneFiles& files, const std::string& joined) {
+  const std::string& base = files.base();
+  if (joined.size() <= base.size() || joined.compare(0, base.size(), base) != 0 || joined[base.size()] != '/')
+    return std::nullopt;
+  return joined.substr(base.size() + 1);
 }
 
-bool file_exists(const std::string& path, void* user) { return !resolve(*static_cast<UriPolicy*>(user), path).empty(); }
+bool file_exists(const std::string& path, void* user) {
+  auto& files = *static_cast<SceneFiles*>(user);
+  const auto uri = uri_of(files, path);
+  return uri && !files.resolve(*uri).empty();
+}
 
 std::string expand_path(const std::string& path, void*) { return path; }
 
@@ -76,18 +55,12 @@ bool read_bytes(const fs::path& file, std::vector<unsigned char>& out, std::stri
 }
 
 bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
-  auto& policy = *static_cast<UriPolicy*>(user);
-  const fs::path file = resolve(policy, path);
-  if (file.empty()) return false;
-  std::string error;
-  if (read_bytes(file, *out, error)) {
-    policy.content.add(path.substr(std::min(path.size(), policy.base.size())));  // "/URI"
-    policy.content.add(out->data(), out->size());
-    return true;
-  }
-  if (policy.problem.empty()) policy.problem = fmt::format("cannot read {}: {}", file.string(), error);
-  if (err) *err += policy.problem;
-  return false;
+  auto& files = *static_cast<SceneFiles*>(user);
+  const auto uri = uri_of(files, path);
+  if (!uri) return false;
+  const bool ok = files.read(*uri, *out);
+  if (!ok && err) *err += files.problem();
+  return ok;
 }
 
 bool write_whole_file(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
@@ -154,6 +127,18 @@ std::string spec_errors(const std::string& errors) {
   return kept;
 }
 
+// glTF 2.0 §5.10: a buffer's byteLength is at least 1 (tinygltf throws on a GLB buffer of 0 bytes).
+void check_buffer_lengths(std::string_view json, const std::string& file) {
+  const nlohmann::json doc = nlohmann::json::parse(json, nullptr, false);
+  if (!doc.is_object() || !doc.contains("buffers") || !doc["buffers"].is_array()) return;
+  for (size_t b = 0; b < doc["buffers"].size(); ++b) {
+    const nlohmann::json& buffer = doc["buffers"][b];
+    if (buffer.is_object() && buffer.contains("byteLength") && buffer["byteLength"].is_number() &&
+        !(buffer["byteLength"].get<double>() >= 1))
+      fail("{}: buffer {} declares a byteLength of {} (at least 1)", file, b, buffer["byteLength"].dump());
+  }
+}
+
 }  // namespace
 
 std::string_view gltf_json(const std::vector<unsigned char>& bytes, bool binary) {
@@ -182,22 +167,70 @@ int json_depth(const char* text, size_t size) {
   return deepest;
 }
 
-std::string read_gltf_file(tinygltf::TinyGLTF& reader, tinygltf::Model& model, const fs::path& file,
-                           bool allow_external_paths, uint64_t& content_hash) {
-  const std::string name = file.string();
+SceneFiles::SceneFiles(const fs::path& scene_file, bool allow_external_paths)
+    : scene_file_(scene_file.string()), allow_external_(allow_external_paths) {
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) fail("{}: no such file", name);
-  UriPolicy policy;
-  policy.root = fs::weakly_canonical(fs::absolute(file).parent_path(), ec);
-  if (ec) fail("{}: cannot resolve its folder: {}", name, ec.message());
-  policy.base = policy.root.string();
-  policy.allow_external = allow_external_paths;
-  reader.SetFsCallbacks({file_exists, expand_path, read_whole_file, write_whole_file, &policy});
+  if (!fs::is_regular_file(scene_file, ec)) fail("{}: no such file", scene_file_);
+  root_ = fs::weakly_canonical(fs::absolute(scene_file).parent_path(), ec);
+  if (ec) fail("{}: cannot resolve its folder: {}", scene_file_, ec.message());
+  base_ = root_.string();
+}
+
+fs::path SceneFiles::resolve(const std::string& uri) {
+  const fs::path named = !uri.empty() && uri.front() == '/' ? fs::path(uri) : root_ / uri;
+  std::error_code ec;
+  const fs::path resolved = fs::weakly_canonical(named, ec);
+  const auto refuse = [&](const std::string& why) {
+    if (problem_.empty()) problem_ = why;
+    return fs::path();
+  };
+  if (uri.empty()) return refuse("an empty URI");
+  if (ec) return refuse(fmt::format("URI '{}' cannot be resolved (tried {}): {}", uri, named.string(), ec.message()));
+  if (!allow_external_ && !inside(root_, resolved))
+    return refuse(
+        fmt::format("URI '{}' resolves to {}, outside the scene's folder {} (--allow-external-paths allows it)", uri,
+                    resolved.string(), root_.string()));
+  if (!fs::exists(resolved, ec))
+    return refuse(fmt::format("URI '{}': no such file (tried {})", uri, resolved.string()));
+  if (!fs::is_regular_file(resolved, ec))
+    return refuse(fmt::format("URI '{}': {} is not a regular file", uri, resolved.string()));
+  return resolved;
+}
+
+bool SceneFiles::read(const std::string& uri, std::vector<unsigned char>& out) {
+  const fs::path file = resolve(uri);
+  if (file.empty()) return false;
+  std::string error;
+  if (!read_bytes(file, out, error)) {
+    if (problem_.empty()) problem_ = fmt::format("cannot read {}: {}", file.string(), error);
+    return false;
+  }
+  content_.add("/" + uri);
+  content_.add(out.data(), out.size());
+  return true;
+}
+
+std::vector<unsigned char> SceneFiles::read(const std::string& uri, const std::string& what) {
+  std::vector<unsigned char> bytes;
+  if (!read(uri, bytes)) {
+    std::string why;
+    std::swap(why, problem_);
+    fail("{}: {}: {}", scene_file_, what, why);
+  }
+  return bytes;
+}
+
+void SceneFiles::add_scene_bytes(const std::vector<unsigned char>& bytes) { content_.add(bytes.data(), bytes.size()); }
+
+std::string read_gltf_file(tinygltf::TinyGLTF& reader, tinygltf::Model& model, const fs::path& file, SceneFiles& files,
+                           std::string& json) {
+  const std::string name = file.string();
+  reader.SetFsCallbacks({file_exists, expand_path, read_whole_file, write_whole_file, &files});
 
   std::vector<unsigned char> bytes;
   std::string error, warn;
   if (!read_bytes(file, bytes, error)) fail("{}: cannot read: {}", name, error);
-  policy.content.add(bytes.data(), bytes.size());
+  files.add_scene_bytes(bytes);
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   size_t bin_length = 0;
   if (binary) {
@@ -207,14 +240,20 @@ std::string read_gltf_file(tinygltf::TinyGLTF& reader, tinygltf::Model& model, c
   } else {
     check_depth(reinterpret_cast<const char*>(bytes.data()), bytes.size(), name);
   }
+  if (const std::string_view text = gltf_json(bytes, binary); text.find("\"prism\"") != std::string_view::npos)
+    json = text;
   bytes = prepare_for_tinygltf(std::move(bytes), binary, name);
   if (bytes.size() > std::numeric_limits<unsigned>::max()) fail("{}: glTF and GLB files are limited to 4 GB", name);
-  const bool ok =
-      binary ? reader.LoadBinaryFromMemory(&model, &error, &warn, bytes.data(), unsigned(bytes.size()), policy.base)
-             : reader.LoadASCIIFromString(&model, &error, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                          unsigned(bytes.size()), policy.base);
-  if (!policy.problem.empty()) fail("{}: {}", name, policy.problem);
-  content_hash = policy.content.h;
+  bool ok = false;
+  try {
+    ok = binary ? reader.LoadBinaryFromMemory(&model, &error, &warn, bytes.data(), unsigned(bytes.size()), files.base())
+                : reader.LoadASCIIFromString(&model, &error, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                             unsigned(bytes.size()), files.base());
+  } catch (const std::exception& e) {  // the parser's own checks missed something: name what we can
+    check_buffer_lengths(gltf_json(bytes, binary), name);
+    fail("{}: not a valid glTF file: the parser stopped on it ({})", name, e.what());
+  }
+  if (!files.problem().empty()) fail("{}: {}", name, files.problem());
   // A required extension the parser cannot follow (its data elsewhere) is the real cause.
   if (!ok)
     if (const std::string ext = unsupported_required_extension(gltf_json(bytes, binary)); !ext.empty())

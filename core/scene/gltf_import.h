@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>
@@ -21,18 +22,17 @@
 
 #include "core/base/error.h"
 #include "core/scene/gltf_animation.h"
+#include "core/scene/gltf_file.h"
 #include "core/scene/gltf_loader.h"
 #include "core/scene/gltf_morph.h"
 #include "core/scene/gltf_skin.h"
+#include "core/scene/refractive_index_file.h"
 #include "core/scene/scene.h"
 
 namespace prism {
 
 // A number from a material extension's object, or the extension's default (NaN if not a number).
 double extension_number(const tinygltf::Material& m, const char* extension, const char* field, double fallback);
-
-// A string under the material's extras: {"prism": {"metal": "Cu"}} names a catalogue material.
-std::string prism_extra(const tinygltf::Material& m, const char* field);
 
 bool all_finite(const std::vector<double>& v);
 
@@ -44,8 +44,9 @@ const char* extension_handling(const std::string& extension);
 class GltfLoader {
  public:
   // Fails on `parse_errors` (the parser's, in a model it did build) after the extension check.
+  // `json`: the file's JSON text when it holds Prism's extras (read_gltf_file), else empty.
   GltfLoader(const tinygltf::Model& model, const std::filesystem::path& file, const GltfOptions& options, Scene& scene,
-             const std::string& parse_errors);
+             const std::string& parse_errors, SceneFiles& files, const std::string& json);
 
   void load();             // the scene as `options` choose it
   bool pose(double time);  // false: nothing moved
@@ -76,6 +77,11 @@ class GltfLoader {
   std::optional<Texture> extension_texture(const tinygltf::Material& m, const char* extension, const char* field,
                                            const std::string& context);
   PbrMaterial surface(const tinygltf::Material& m, Rgb base, const std::string& context);
+  // extras {"prism": {…}} (gltf_extras.cpp): a material's catalogue materials and spectra, a
+  // light's emission spectrum (read once per light), a refractiveindex.info file an extra names
+  void material_extras(const tinygltf::Material& m, int index, Material& out, const std::string& context);
+  Spectrum light_emission(const tinygltf::Light& light, Rgb rgb, const std::string& context);
+  OpticalConstants optical_constants_file(const nlohmann::json& uri, const std::string& what);
   uint32_t material_index(int gltf_material, const std::string& context);
   Rgb clamp_emission(const std::array<double, 3>& rgb, const std::string& context);
 
@@ -112,6 +118,9 @@ class GltfLoader {
   void add_light(const tinygltf::Light& light, const Transform& world, const std::string& context);
 
   const tinygltf::Model& model_;
+  SceneFiles& files_;                      // the files the scene reads (its spectrum tables through it)
+  nlohmann::json document_;                // the file's JSON, when it holds Prism's extras (else null)
+  std::map<int, Spectrum> light_spectra_;  // extras' emission spectra of the lights, by index
   std::string file_;
   Scene& scene_;
   int scene_index_ = 0;

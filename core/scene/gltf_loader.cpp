@@ -57,13 +57,6 @@ double extension_number(const tinygltf::Material& m, const char* extension, cons
   return v.IsNumber() ? v.GetNumberAsDouble() : std::nan("");
 }
 
-std::string prism_extra(const tinygltf::Material& m, const char* field) {
-  if (!m.extras.IsObject() || !m.extras.Has("prism")) return {};
-  const auto& prism = m.extras.Get("prism");
-  if (!prism.IsObject() || !prism.Has(field) || !prism.Get(field).IsString()) return {};
-  return prism.Get(field).Get<std::string>();
-}
-
 bool all_finite(const std::vector<double>& v) {
   return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
 }
@@ -74,8 +67,10 @@ const char* extension_handling(const std::string& extension) {
 }
 
 GltfLoader::GltfLoader(const tinygltf::Model& model, const std::filesystem::path& file, const GltfOptions& options,
-                       Scene& scene, const std::string& parse_errors)
+                       Scene& scene, const std::string& parse_errors, SceneFiles& files, const std::string& json)
     : model_(model),
+      files_(files),
+      document_(json.empty() ? nlohmann::json() : nlohmann::json::parse(json, nullptr, false)),
       file_(file.string()),
       scene_(scene),
       meshes_(model.meshes.size()),
@@ -154,17 +149,20 @@ void GltfLoader::warn_once(const std::string& message) {
 struct GltfScene::State {
   std::unique_ptr<tinygltf::Model> model;
   Scene scene;
+  SceneFiles files;
   std::unique_ptr<GltfLoader> loader;
-  State(const std::filesystem::path& file, const GltfOptions& options) : model(std::make_unique<tinygltf::Model>()) {
+  State(const std::filesystem::path& file, const GltfOptions& options)
+      : model(std::make_unique<tinygltf::Model>()), files(file, options.allow_external_paths) {
     tinygltf::TinyGLTF reader;
     reader.SetImageLoader(keep_encoded_image, nullptr);
-    const std::string errors = read_gltf_file(reader, *model, file, options.allow_external_paths, scene.source_hash);
+    std::string json;
+    const std::string errors = read_gltf_file(reader, *model, file, files, json);
     if (errors.empty()) {  // else the loader names them (after any required extension Prism lacks)
       decode_meshopt(*model, file.string());
       decode_draco(*model, file.string());
     }
     scene.source = file;
-    loader = std::make_unique<GltfLoader>(*model, file, options, scene, errors);
+    loader = std::make_unique<GltfLoader>(*model, file, options, scene, errors, files, json);
   }
   const GltfLoader& open() const {
     if (!loader) fail("{}: internal error: the file was closed", scene.source.string());
@@ -175,6 +173,7 @@ struct GltfScene::State {
 GltfScene::GltfScene(const std::filesystem::path& file, const GltfOptions& options)
     : state_(std::make_unique<State>(file, options)) {
   state_->loader->load();
+  state_->scene.source_hash = state_->files.hash();  // with the files the extras named
 }
 
 GltfScene::~GltfScene() = default;

@@ -6,7 +6,6 @@
 
 #include "core/base/log.h"
 #include "core/scene/gltf_import.h"
-#include "materials/catalogue.h"
 
 namespace prism {
 
@@ -61,6 +60,7 @@ Material GltfLoader::convert_material(const tinygltf::Material& m, int index) {
     out.emission_texture =
         texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions, context);
   }
+  material_extras(m, index, out, context);
   if (m.extensions.count("KHR_materials_unlit")) make_unlit(out);
   return out;
 }
@@ -133,8 +133,8 @@ std::optional<Texture> GltfLoader::extension_texture(const tinygltf::Material& m
                  ext, context);
 }
 
-// glTF's metallic-roughness parameters with the KHR extensions Prism honours; extras may name
-// a catalogue metal ({"prism": {"metal": "Cu"}}) or glass ({"prism": {"glass": "N-BK7"}}).
+// glTF's metallic-roughness parameters with the KHR extensions Prism honours (the material's
+// extras, catalogue materials and spectra, are read after: gltf_extras.cpp).
 PbrMaterial GltfLoader::surface(const tinygltf::Material& m, Rgb base, const std::string& context) {
   const auto number = [&](const char* ext, const char* field, double fallback, double lo, double hi) {
     const double v = extension_number(m, ext, field, fallback);
@@ -214,11 +214,7 @@ PbrMaterial GltfLoader::surface(const tinygltf::Material& m, Rgb base, const std
   p.anisotropy_rotation = {std::cos(rotation), std::sin(rotation)};
 
   IorModel ior_model = ConstantIor{float(number("KHR_materials_ior", "ior", 1.5, 1, 1e3))};
-  if (const std::string glass = prism_extra(m, "glass"); !glass.empty()) {
-    ior_model = MaterialCatalogue::standard().dielectric(glass);
-    p.metallic = 0;
-    p.transmission = 1;
-  } else if (const double dispersion = number("KHR_materials_dispersion", "dispersion", 0, 0, 1e6); dispersion > 0) {
+  if (const double dispersion = number("KHR_materials_dispersion", "dispersion", 0, 0, 1e6); dispersion > 0) {
     // KHR_materials_dispersion: dispersion = 20 / V_d.
     ior_model = AbbeIor{std::get<ConstantIor>(ior_model).n, float(20 / dispersion)};
   }
@@ -241,10 +237,6 @@ PbrMaterial GltfLoader::surface(const tinygltf::Material& m, Rgb base, const std
     if (std::min({color.r, color.g, color.b}) < 1) absorption = RgbAbsorptionSpectrum(color, float(distance));
   }
   p.dielectric = Dielectric(std::move(ior_model), std::move(absorption), thickness == 0);
-  if (const std::string metal = prism_extra(m, "metal"); !metal.empty()) {
-    p.metal = MaterialCatalogue::standard().metal(metal);
-    p.metallic = 1;
-  }
   return p;
 }
 

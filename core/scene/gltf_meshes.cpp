@@ -120,6 +120,8 @@ std::optional<Mesh> GltfLoader::convert_primitive(const tinygltf::Primitive& pri
       mesh.tangents.push_back({t[i], t[i + 1], t[i + 2], t[i + 3] < 0 ? -1.f : 1.f});
   }
   std::vector<uint32_t> vertices;
+  if (prim.indices < -1)  // tinygltf's -1 is "none"; any other negative index names no accessor
+    fail("{} indices: accessor {} does not exist", context, prim.indices);
   if (prim.indices >= 0) {
     vertices = read_accessor_indices(model_, prim.indices, context + " indices");
     for (uint32_t i : vertices)

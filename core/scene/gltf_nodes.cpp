@@ -179,8 +179,9 @@ void GltfLoader::add_camera(const tinygltf::Camera& cam, const Transform& world,
     c.projection = CameraDesc::Projection::orthographic;
     c.xmag = float(std::abs(cam.orthographic.xmag));
     c.ymag = float(std::abs(cam.orthographic.ymag));
-    if (!(c.xmag > 0 && c.ymag > 0))
-      fail("{}: orthographic camera '{}' needs non-zero xmag and ymag", context, cam.name);
+    if (!(c.xmag > 0 && c.ymag > 0 && std::isfinite(c.xmag) && std::isfinite(c.ymag)))
+      fail("{}: orthographic camera '{}' needs non-zero xmag and ymag that are finite in single precision (got {}, {})",
+           context, cam.name, cam.orthographic.xmag, cam.orthographic.ymag);
     c.aspect = c.xmag / c.ymag;
   } else {
     fail("{}: camera '{}' has unknown type '{}'", context, cam.name, cam.type);
@@ -202,8 +203,10 @@ void GltfLoader::add_light(const tinygltf::Light& light, const Transform& world,
   if (!std::isfinite(light.intensity) || light.intensity < 0)
     fail("{}: light '{}' has invalid intensity {}", context, light.name, light.intensity);
   if (light.range > 0) warn_once("light range is ignored: lights fall off with the inverse square of distance");
-  const Spectrum emission = RgbIlluminantSpectrum(
-      clamp_emission({color[0] * light.intensity, color[1] * light.intensity, color[2] * light.intensity}, context));
+  const Spectrum emission = light_emission(
+      light,
+      clamp_emission({color[0] * light.intensity, color[1] * light.intensity, color[2] * light.intensity}, context),
+      context);
   const Vec3f position(world.point({0, 0, 0}));
   const Vec3f direction(normalize(world.vector({0, 0, -1})));
   if (!float_finite(world.point({0, 0, 0})))

@@ -98,6 +98,7 @@ struct EnvironmentMapDesc {
   float rotation = 0.f;  // about +Y, right-handed [radians]
   float scale = 1.f;     // multiplies every texel
   uint64_t hash = 0;     // FNV-1a of the image's values as read: names it in fingerprints, whatever its path
+  std::optional<DenselySampledSpectrum> white;  // the spectrum of RGB (1, 1, 1), luminance 1; none: D65
 };
 
 struct Scene {

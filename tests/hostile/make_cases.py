@@ -248,6 +248,7 @@ def build_cases():
         ("glb_magic_only", b"glTF", ""),
         ("glb_truncated", glb(G, bb)[:-10], ""),
         ("glb_empty_bin", glb(set_path(glb_gltf(), ["buffers", 0, "byteLength"], 0), b""), "BIN"),
+        ("glb_buffer_length_zero", glb(set_path(glb_gltf(), ["buffers", 0, "byteLength"], 0), bb), "buffer 0"),
         ("glb_no_bin_chunk", glb(G, b""), "BIN"),
     ]:
         case(name, "refused", {"scene.glb": data}, scene="scene.glb", mention=[mention] if mention else [])
@@ -340,6 +341,29 @@ def build_cases():
     for name, values in [("color_nan", [float("nan")] * 3), ("color_inf", [float("inf"), -float("inf"), 1e30])]:
         gltf_case(name, "rendered", B(colors=True), binary=base_bin([values, (1, 1, 1), (0.5, 0.5, 0.5)]))
 
+    # Spectral inputs (extras.prism), each broken one way: one error naming the material or light.
+    bad_csv = {"bad.csv": b"wavelength_nm,value\n400,0.5\n500,x\n"}
+    for name, prism, mention in [
+        ("spectrum_unknown_name", {"emission": "D66"}, ["glow", "D66"]),
+        ("spectrum_table_empty", {"reflectance": {"wavelengths": [], "values": []}}, ["glow", "empty"]),
+        ("spectrum_not_increasing", {"reflectance": {"wavelengths": [500, 400], "values": [0.1, 0.2]}},
+         ["glow", "increase"]),
+        ("spectrum_negative", {"emission": {"wavelengths": [400, 500], "values": [1, -1]}}, ["glow", "non-negative"]),
+        ("spectrum_reflectance_above_1", {"reflectance": {"wavelengths": [400, 500], "values": [0.5, 1.5]}},
+         ["glow", "[0, 1]"]),
+        ("spectrum_file_outside", {"reflectance": {"file": "../secret/secret.bin"}}, ["glow", "outside"]),
+        ("spectrum_file_missing", {"reflectance": {"file": "nowhere.csv"}}, ["glow", "nowhere.csv"]),
+        ("spectrum_file_malformed", {"reflectance": {"file": "bad.csv"}}, ["glow", "line 3"]),
+        ("spectrum_blackbody_cold", {"emission": {"blackbody": 1}}, ["glow", "blackbody"]),
+        ("metal_nk_file_malformed", {"metal": {"nk": "bad.csv"}}, ["glow", "wl,n"]),
+        ("glass_sellmeier_short", {"glass": {"sellmeier": [1, 2]}}, ["glow", "sellmeier"]),
+    ]:
+        gltf_case(name, "refused", set_path(B(), ["materials", 0, "extras"], {"prism": prism}), mention=mention,
+                  extra_files=bad_csv)
+    gltf_case("light_spectrum_unknown_name", "refused",
+              set_path(B(), ["extensions", "KHR_lights_punctual", "lights", 0, "extras"], {"prism": {"emission": "D66"}}),
+              mention=["bulb", "D66"])
+
     # Transforms that overflow only in world space.
     gltf_case("scale_overflow", "refused", set_path(B(), ["nodes", 0, "scale"], [1e39, 1e39, 1e39]), mention=["triangle"])
     big = [(x * 3e38, y * 3e38, z) for x, y, z in POSITIONS]
@@ -349,6 +373,11 @@ def build_cases():
               mention=["triangle"])
     gltf_case("camera_overflow", "refused", set_path(B(), ["nodes", 1, "translation"], [0, 0, 1e39]), mention=["cam"])
     gltf_case("camera_scale_zero", "refused", set_path(B(), ["nodes", 1, "scale"], [0, 0, 0]), mention=["cam"])
+    for name, mag in [("ortho_camera_mag_overflow", 1e300), ("ortho_camera_mag_zero", 0)]:
+        gltf_case(name, "refused", set_path(B(), ["cameras", 0], {"name": "cam", "type": "orthographic", "orthographic": {
+            "xmag": mag, "ymag": mag, "znear": 0.1, "zfar": 100}}), mention=["cam", "mag"])
+    gltf_case("indices_negative", "refused", set_path(B(), ["meshes", 0, "primitives", 0, "indices"], -5),
+              mention=["indices", "-5"])
     gltf_case("matrix_nan_free_degenerate", "refused", set_path(B(), ["nodes", 1, "matrix"], [0] * 16), mention=["cam"])
     gltf_case("light_overflow", "refused", set_path(B(), ["nodes", 2, "translation"], [1e39, 0, 0]), mention=["lamp"])
 

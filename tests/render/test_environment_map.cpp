@@ -21,7 +21,7 @@ namespace {
 
 EnvironmentMapDesc make_map(int width, int height, const std::function<Rgb(int x, int y)>& texel, float rotation = 0,
                             float scale = 1) {
-  EnvironmentMapDesc d{"test map", {width, height, {}}, rotation, scale};
+  EnvironmentMapDesc d{"test map", {width, height, {}}, rotation, scale, 0, std::nullopt};
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const Rgb c = texel(x, y);

@@ -92,4 +92,28 @@ std::filesystem::path write_animated_triangle(const std::filesystem::path& dir) 
   return file;
 }
 
+std::filesystem::path write_quad_scene(const std::filesystem::path& dir, const std::string& name,
+                                       const std::string& material, const std::string& light) {
+  GltfBuilder b;
+  const int pos = b.floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3");
+  const int nrm = b.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
+  const int idx = b.u16({0, 1, 2, 0, 2, 3});
+  const std::string lights =
+      light.empty() ? "" : fmt::format(R"(, "extensions": {{"KHR_lights_punctual": {{"lights": [{}]}}}})", light);
+  const std::string light_node =
+      light.empty() ? "" : R"(, {"translation": [0, 0, 1], "extensions": {"KHR_lights_punctual": {"light": 0}}})";
+  const std::string text = b.json(fmt::format(R"(
+  "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_specular",
+                     "KHR_materials_volume", "KHR_materials_transmission"],
+  "scenes": [{{"nodes": [0, 1{}]}}],
+  "nodes": [{{"mesh": 0}}, {{"camera": 0, "translation": [0, 0, 2]}}{}],
+  "cameras": [{{"type": "perspective", "perspective": {{"yfov": 0.4, "znear": 0.01}}}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": {}, "NORMAL": {}}}, "indices": {}, "material": 0}}]}}],
+  "materials": [{}]{})",
+                                              light.empty() ? "" : ", 2", light_node, pos, nrm, idx, material, lights));
+  const std::filesystem::path path = dir / (name + ".gltf");
+  std::ofstream(path) << text;
+  return path;
+}
+
 }  // namespace prism::test

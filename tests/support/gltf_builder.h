@@ -34,4 +34,11 @@ struct GltfBuilder {
 // 0 -> 1), "cubic" (CUBICSPLINE scale (0,0,0) -> (7,8,9), tangents (1,2,3) and (4,5,6)).
 std::filesystem::path write_animated_triangle(const std::filesystem::path& dir);
 
+// DIR/NAME.gltf: a quad [−1, 1]² in the plane z = 0 facing +z, of the material `material` (its
+// JSON), seen head-on from (0, 0, 2) by a camera it fills; with `light` (a KHR_lights_punctual
+// light's JSON), that light on a node at (0, 0, 1), shining down −z onto the quad. Files the
+// material names can be written beside it.
+std::filesystem::path write_quad_scene(const std::filesystem::path& dir, const std::string& name,
+                                       const std::string& material, const std::string& light = "");
+
 }  // namespace prism::test
