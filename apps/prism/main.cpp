@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   prism::add_fresnel_command(app);
   prism::add_converge_command(app);
   prism::add_compare_command(app);
+  prism::add_measure_command(app);
   prism::add_bench_command(app);
   try {
     app.parse(argc, argv);

@@ -1,12 +1,12 @@
 #include "apps/prism/plot.h"
 
 #include <fmt/format.h>
-#include <stb_easy_font.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
+#include "apps/prism/canvas.h"
 #include "core/base/error.h"
 #include "core/render/image_output.h"
 
@@ -14,64 +14,11 @@ namespace prism {
 
 namespace {
 
-using Color = std::array<float, 3>;
-
 // Matplotlib's default colour cycle ("tab10").
 const Color kPalette[] = {{0.122f, 0.467f, 0.706f}, {1.000f, 0.498f, 0.055f}, {0.173f, 0.627f, 0.173f},
                           {0.839f, 0.153f, 0.157f}, {0.580f, 0.404f, 0.741f}, {0.549f, 0.337f, 0.294f},
                           {0.890f, 0.467f, 0.761f}, {0.498f, 0.498f, 0.498f}, {0.737f, 0.741f, 0.133f},
                           {0.090f, 0.745f, 0.812f}};
-
-class Canvas {
- public:
-  Canvas(int w, int h) : w_(w), h_(h), rgb_(size_t(w) * h * 3, 1.f) {}
-
-  void blend(int x, int y, const Color& c, float alpha) {
-    if (x < 0 || y < 0 || x >= w_ || y >= h_ || alpha <= 0) return;
-    float* p = &rgb_[(size_t(y) * w_ + x) * 3];
-    for (int i = 0; i < 3; ++i) p[i] = p[i] * (1 - alpha) + c[i] * alpha;
-  }
-
-  void rect(float x0, float y0, float x1, float y1, const Color& c) {
-    for (int y = int(std::floor(y0)); y < int(std::ceil(y1)); ++y)
-      for (int x = int(std::floor(x0)); x < int(std::ceil(x1)); ++x) blend(x, y, c, 1.f);
-  }
-
-  // Anti-aliased segment of the given width: coverage from the pixel centre's distance.
-  void line(float x0, float y0, float x1, float y1, float width, const Color& c) {
-    const float dx = x1 - x0, dy = y1 - y0, len2 = dx * dx + dy * dy;
-    const int xa = int(std::floor(std::min(x0, x1) - width)), xb = int(std::ceil(std::max(x0, x1) + width));
-    const int ya = int(std::floor(std::min(y0, y1) - width)), yb = int(std::ceil(std::max(y0, y1) + width));
-    for (int y = ya; y <= yb; ++y)
-      for (int x = xa; x <= xb; ++x) {
-        const float px = x + 0.5f - x0, py = y + 0.5f - y0;
-        const float t = len2 > 0 ? std::clamp((px * dx + py * dy) / len2, 0.f, 1.f) : 0.f;
-        const float d = std::hypot(px - t * dx, py - t * dy);
-        blend(x, y, c, std::clamp(width / 2 + 0.5f - d, 0.f, 1.f));
-      }
-  }
-
-  // Text with its top-left corner at (x, y), scaled up from stb_easy_font's ~7-pixel glyphs.
-  void text(float x, float y, const std::string& s, float scale, const Color& c) {
-    static char buffer[1 << 16];
-    std::string copy = s;
-    const int quads = stb_easy_font_print(0, 0, copy.data(), nullptr, buffer, sizeof(buffer));
-    for (int q = 0; q < quads; ++q) {
-      const float* v = reinterpret_cast<const float*>(buffer + q * 64);  // 4 vertices of 16 bytes
-      rect(x + v[0] * scale, y + v[1] * scale, x + v[8] * scale, y + v[9] * scale, c);
-    }
-  }
-  static float text_width(const std::string& s, float scale) {
-    std::string copy = s;
-    return float(stb_easy_font_width(copy.data())) * scale;
-  }
-
-  const std::vector<float>& rgb() const { return rgb_; }
-
- private:
-  int w_, h_;
-  std::vector<float> rgb_;
-};
 
 struct Axis {
   double lo, hi;
@@ -101,14 +48,19 @@ std::vector<double> ticks(const Axis& a) {
     for (double v = a.lo; v <= a.hi * 1.0001; v *= 10) t.push_back(v);
     return t;
   }
-  const double raw = (a.hi - a.lo) / 6, mag = std::pow(10, std::floor(std::log10(raw)));
-  const double step = raw / mag < 2 ? 2 * mag : raw / mag < 5 ? 5 * mag : 10 * mag;
-  for (double v = std::ceil(a.lo / step) * step; v <= a.hi + 1e-9 * step; v += step)
-    t.push_back(std::abs(v) < 1e-12 ? 0 : v);
-  return t;
+  return nice_ticks(a.lo, a.hi, 6);
 }
 
 }  // namespace
+
+std::vector<double> nice_ticks(double lo, double hi, int about) {
+  std::vector<double> t;
+  const double raw = (hi - lo) / about, mag = std::pow(10, std::floor(std::log10(raw)));
+  const double step = raw / mag < 2 ? 2 * mag : raw / mag < 5 ? 5 * mag : 10 * mag;
+  for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step)
+    t.push_back(std::abs(v) < 1e-12 ? 0 : v);
+  return t;
+}
 
 void write_plot_png(const std::filesystem::path& file, const Plot& plot) {
   Canvas canvas(plot.width, plot.height);

@@ -25,4 +25,7 @@ struct Plot {
 
 void write_plot_png(const std::filesystem::path& file, const Plot& plot);
 
+// Round values from lo to hi in steps of 1, 2 or 5 times a power of ten, about `about` of them.
+std::vector<double> nice_ticks(double lo, double hi, int about);
+
 }  // namespace prism
