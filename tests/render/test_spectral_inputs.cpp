@@ -3,8 +3,9 @@
 // normalised by ∫S ȳ, an emitter of spectrum S shows S's colour at the luminance its glTF factors
 // give, and D65 and E round trip through every path.
 
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
 

@@ -79,7 +79,8 @@ TEST_CASE("bad spectra are refused with one message naming what and why") {
   CHECK(arg("blackbody:10").find("[100, 1e6] K") != std::string::npos);
   CHECK(arg("D65", SpectrumUse::reflectance).find("names an illuminant") != std::string::npos);
   CHECK(error_of([] {
-          checked_spectrum(TabulatedSpectrum({900, 950}, {1, 1}, TabulatedSpectrum::Outside::zero), SpectrumUse::emission, "ir lamp");
+          checked_spectrum(TabulatedSpectrum({900, 950}, {1, 1}, TabulatedSpectrum::Outside::zero),
+                           SpectrumUse::emission, "ir lamp");
         }).find("no luminance") != std::string::npos);
 }
 
