@@ -6,11 +6,14 @@
 //   f_t = D(m) G (1 − F) |(wi·m)(wo·m)| / (|cos θ_o cos θ_i| (wi·m + wo·m/η')²) / η'²,  m ∝ η' wi + wo
 // where the last 1/η'² is the radiance scaling across the interface (Veach 1997, §5.2).
 // Thin wall (a sheet with no interior): the two interfaces' inter-reflections sum to
-// R' = R + T²R/(1 − R²), T' = 1 − R' (pbrt-v4 §9.5.1), and light leaves on the far side in the
-// mirror image of the reflection lobe (straight through when smooth). Only the clear share of a
-// wall (`transmission`) has a far face: an opaque wall is the one interface over its base (glTF
-// materials without KHR_materials_volume are thin-walled, most of them opaque); a partly clear
-// one is both, side by side (see reflected()).
+// R' = R + T²R/(1 − R²) = 2R/(1 + R), T' = 1 − R' for each polarisation, s and p apart (a plane
+// interface never turns one into the other), and unpolarised light reflects their mean; light
+// leaves on the far side in the mirror image of the reflection lobe (straight through when
+// smooth). (The sum over the unpolarised R, as pbrt-v4 §9.5.1 takes it, passes up to 0.022
+// less light from 50° to 85° at η = 1.5.) Only the clear share of a wall (`transmission`) has
+// a far face: an opaque wall is the one interface over its base (glTF materials without
+// KHR_materials_volume are thin-walled, most of them opaque); a partly clear one is both, side
+// by side (see reflected()).
 // `transmission` ∈ [0, 1] weights the transmitted lobe (glTF's transmissionFactor; the rest
 // of the light goes to a diffuse base elsewhere); `tint` colours transmitted light; `specular`
 // scales the reflectance, s·F, leaving 1 − s·F to pass (KHR_materials_specular's factor).
@@ -53,6 +56,13 @@ struct SpectralReflectance {
   std::optional<FilmLanes<N>> film;
 };
 
+// One face's reflectance R (per lane, or one number) and what a thin wall's inter-reflections add
+// to it, R' − R (0 for a solid interface).
+template <typename S>
+struct FaceReflectance {
+  S R, sheet_excess;
+};
+
 template <int N, bool Extensions = false>
 class DielectricBsdf {
  public:
@@ -76,26 +86,33 @@ class DielectricBsdf {
   bool is_specular() const { return smooth_; }
 
   // Fresnel reflectance s·F of one face at a (micro)facet with cos θ = cos_theta (signed: < 0 from
-  // behind), per lane: what reflected() and transmitted() share out.
-  SampledSpectrum<N> fresnel(float cos_theta) const {
+  // behind), per lane, with a thin wall's sheet excess: what reflected() and transmitted() share out.
+  FaceReflectance<SampledSpectrum<N>> fresnel(float cos_theta) const {
     const float c = thin_ ? std::abs(cos_theta) : cos_theta;
+    FaceReflectance<SampledSpectrum<N>> face{SampledSpectrum<N>(0.f), SampledSpectrum<N>(0.f)};
     if constexpr (Extensions)
       if (lanes_) {
         const auto eta = [&](int i) { return lanes_->eta ? (*lanes_->eta)[i] : eta_; };
-        SampledSpectrum<N> R;
-        if (lanes_->film)
-          R = lanes_->film->reflectance(c, eta);
-        else
-          for (int i = 0; i < N; ++i) R[i] = fresnel_dielectric(c, eta(i));
-        for (int i = 0; i < N; ++i) R[i] *= specular_;
-        return R;
+        if (lanes_->film) face.R = lanes_->film->reflectance(c, eta) * specular_;
+        if (lanes_->film && !thin_) return face;
+        for (int i = 0; i < N; ++i) {
+          const FresnelReflectance bare = fresnel_dielectric_polarized(c, eta(i));
+          if (!lanes_->film) face.R[i] = specular_ * bare.R;
+          // A film's reflectance is shared between s and p as the bare interface's is.
+          if (thin_) face.sheet_excess[i] = sheet_excess(face.R[i], bare);
+        }
+        return face;
       }
-    return SampledSpectrum<N>(specular_ * fresnel_dielectric(c, eta_));
+    const FresnelReflectance bare = fresnel_dielectric_polarized(c, eta_);
+    face.R = SampledSpectrum<N>(specular_ * bare.R);
+    if (thin_) face.sheet_excess = SampledSpectrum<N>(sheet_excess(specular_ * bare.R, bare));
+    return face;
   }
   // The one face's reflectance that picks reflection over transmission when sampling (shares()):
   // that of every lane alike (a per-lane one would cost a film per pdf; any choice is unbiased).
-  float selection(float cos_theta) const {
-    return specular_ * fresnel_dielectric(thin_ ? std::abs(cos_theta) : cos_theta, eta_);
+  FaceReflectance<float> selection(float cos_theta) const {
+    const FresnelReflectance bare = fresnel_dielectric_polarized(thin_ ? std::abs(cos_theta) : cos_theta, eta_);
+    return {specular_ * bare.R, thin_ ? sheet_excess(specular_ * bare.R, bare) : 0.f};
   }
 
   // Smooth interface: the reflected share, and the transmitted direction and share.
@@ -104,8 +121,8 @@ class DielectricBsdf {
     return transmission(wo, fresnel(cos_theta(wo)));
   }
   // From the face's reflectance F there.
-  std::optional<Transmission<N>> transmission(const Vec3f& wo, const SampledSpectrum<N>& F) const {
-    if (transmission_ <= 0 || F.min() >= 1) return std::nullopt;
+  std::optional<Transmission<N>> transmission(const Vec3f& wo, const FaceReflectance<SampledSpectrum<N>>& F) const {
+    if (transmission_ <= 0 || F.R.min() >= 1) return std::nullopt;
     const SampledSpectrum<N> T = transmitted(F) * transmission_;
     if (thin_) return Transmission<N>{-wo, tint_ * T, 1.f};
     const auto refraction = refract(wo, {0, 0, 1}, eta_);
@@ -116,7 +133,7 @@ class DielectricBsdf {
   DeltaLobes<N> delta_lobes(const Vec3f& wo) const {
     DeltaLobes<N> d;
     if (!smooth_ || wo.z == 0) return d;
-    const SampledSpectrum<N> F = fresnel(cos_theta(wo));
+    const auto F = fresnel(cos_theta(wo));
     d.add({Vec3f(-wo.x, -wo.y, wo.z), reflected(F), false, 1.f});
     if (const auto t = transmission(wo, F)) d.add({t->wi, t->weight, true, t->eta});
     return d;
@@ -138,7 +155,7 @@ class DielectricBsdf {
     if (!h) return {SampledSpectrum<N>(0.f), 0.f};
     const TrowbridgeReitz::Facet t = facet(wo, wi, *h);
     const float c = dot(wo, h->wm);
-    const SampledSpectrum<N> F = fresnel(c);
+    const auto F = fresnel(c);
     return {f(wo, wi, *h, t, F), pdf(wo, wi, *h, t, selection(c, F))};
   }
 
@@ -186,7 +203,7 @@ class DielectricBsdf {
   // f at the half vector h with its facet's terms t and the Fresnel reflectance F there,
   // compensated (see the header).
   SampledSpectrum<N> f(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, const TrowbridgeReitz::Facet& t,
-                       const SampledSpectrum<N>& F) const {
+                       const FaceReflectance<SampledSpectrum<N>>& F) const {
     if (!compensate_) return single_scattering(wo, wi, h, t, F);
     if (thin_ && transmission_ < 1 && h.reflection) return partly_clear_reflection(wo, wi, t, F);
     if constexpr (Extensions)
@@ -197,14 +214,15 @@ class DielectricBsdf {
 
   // The selection share from the face's reflectance F at the same facet: without per-lane
   // reflectance, every lane of F is that share.
-  float selection(float cos_theta, const SampledSpectrum<N>& F) const {
+  FaceReflectance<float> selection(float cos_theta, const FaceReflectance<SampledSpectrum<N>>& F) const {
     if constexpr (Extensions)
       if (lanes_) return selection(cos_theta);
-    return F[0];
+    return {F.R[0], F.sheet_excess[0]};
   }
 
   // pdf at the half vector h with its facet's terms t, `face` the selection share there.
-  float pdf(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, const TrowbridgeReitz::Facet& t, float face) const {
+  float pdf(const Vec3f& wo, const Vec3f& wi, const HalfVector& h, const TrowbridgeReitz::Facet& t,
+            const FaceReflectance<float>& face) const {
     const auto [R, T] = shares(face);
     if (R + T <= 0) return 0.f;
     if (h.reflection || thin_)  // the far side's lobe mirrors the reflection
@@ -228,7 +246,8 @@ class DielectricBsdf {
   }
 
   SampledSpectrum<N> single_scattering(const Vec3f& wo, const Vec3f& wi, const HalfVector& h,
-                                       const TrowbridgeReitz::Facet& t, const SampledSpectrum<N>& F) const {
+                                       const TrowbridgeReitz::Facet& t,
+                                       const FaceReflectance<SampledSpectrum<N>>& F) const {
     const float D = t.D;
     if (h.reflection) return reflected(F) * (D * t.G / std::abs(4 * wi.z * wo.z));
     const SampledSpectrum<N> T = tint_ * transmitted(F);
@@ -243,7 +262,7 @@ class DielectricBsdf {
   // sheet's t R' as the thin wall's. (The whole divided by the thin wall's white E let a rough white
   // wall return 1.02 of the light at roughness 1, t = 0.25.)
   SampledSpectrum<N> partly_clear_reflection(const Vec3f& wo, const Vec3f& wi, const TrowbridgeReitz::Facet& t,
-                                             const SampledSpectrum<N>& F) const {
+                                             const FaceReflectance<SampledSpectrum<N>>& F) const {
     const SpecularAlbedo& table = SpecularAlbedo::table();
     const float mu = std::abs(wo.z), sheet = transmission_ / table.white(mu, roughness_);
     const float lobe = t.D * t.G / std::abs(4 * wi.z * wo.z);
@@ -259,7 +278,7 @@ class DielectricBsdf {
     SampledSpectrum<N> f;
     for (int i = 0; i < N; ++i) {
       const float opaque = (1 - transmission_) / interface[i];
-      f[i] = lobe * (opaque * F[i] + sheet * (F[i] + sheet_excess(F[i])));
+      f[i] = lobe * (opaque * F.R[i] + sheet * (F.R[i] + F.sheet_excess[i]));
     }
     return f;
   }
@@ -295,7 +314,8 @@ class DielectricBsdf {
   }
 
   std::optional<BsdfSample<N>> sample_smooth(const Vec3f& wo, float uc) const {
-    const SampledSpectrum<N> F = fresnel(cos_theta(wo)), Rs = reflected(F);
+    const auto F = fresnel(cos_theta(wo));
+    const SampledSpectrum<N> Rs = reflected(F);
     const auto t = transmission(wo, F);
     const auto shared = shares(selection(cos_theta(wo)));
     const float R = shared[0], T = t ? shared[1] : 0.f;
@@ -310,27 +330,32 @@ class DielectricBsdf {
   // What the surface reflects and lets through (before the weight `transmission`) from one face's
   // reflectance R, T = 1 − R. A solid interface: R and T. A thin wall is, side by side, a clear
   // sheet (its share t = `transmission`) and the one face over the opaque base (1 − t). The sheet
-  // reflects R' = R + T²R/(1 − R²) and transmits T' = 1 − R' (T²/(1 − R²) = T/(1 + R) without
-  // absorption); the opaque share reflects R and passes T into the base (PbrBsdf's diffuse share,
-  // weighted 1 − t). So the wall reflects t R' + (1 − t) R and transmits t T', and with the base's
-  // (1 − t) T all of it adds to exactly 1: t (R' + T') + (1 − t)(R + T). At t = 1 the full sheet, at
-  // t = 0 the single interface (`thin_` is off). (The far side weighted by t (1 − reflected) made a
-  // partly clear wall return t (1 − t)(R' − R) more than it received: up to 0.04 near grazing.)
-  float reflected(float R) const { return thin_ ? R + transmission_ * sheet_excess(R) : R; }
-  float transmitted(float R) const { return thin_ ? 1 - (R + sheet_excess(R)) : 1 - R; }
-  static float sheet_excess(float R) { return R < 1 ? sqr(1 - R) * R / (1 - R * R) : 0.f; }  // R' − R
-  SampledSpectrum<N> reflected(SampledSpectrum<N> F) const {
-    if (thin_)
-      for (int i = 0; i < N; ++i) F[i] = reflected(F[i]);
-    return F;
+  // reflects R' = R + (R' − R) and transmits T' = 1 − R'; the opaque share reflects R and passes T
+  // into the base (PbrBsdf's diffuse share, weighted 1 − t). So the wall reflects t R' + (1 − t) R
+  // and transmits t T', and with the base's (1 − t) T all of it adds to exactly 1: t (R' + T') +
+  // (1 − t)(R + T). At t = 1 the full sheet, at t = 0 the single interface (`thin_` is off). (The far
+  // side weighted by t (1 − reflected) made a partly clear wall return t (1 − t)(R' − R) more than
+  // it received: up to 0.04 near grazing.)
+  template <typename S>
+  S reflected(const FaceReflectance<S>& F) const {
+    return thin_ ? F.R + F.sheet_excess * transmission_ : F.R;
   }
-  SampledSpectrum<N> transmitted(const SampledSpectrum<N>& F) const {
-    SampledSpectrum<N> T;
-    for (int i = 0; i < N; ++i) T[i] = transmitted(F[i]);
-    return T;
+  template <typename S>
+  S transmitted(const FaceReflectance<S>& F) const {
+    return S(1.f) - (thin_ ? F.R + F.sheet_excess : F.R);
+  }
+  // R' − R of a lossless sheet whose faces reflect R, shared between s and p polarisation as the
+  // bare interface's reflectance `bare` is: Σ ½ R_x (1 − R_x) / (1 + R_x) (R_x' = 2 R_x / (1 + R_x)).
+  static float sheet_excess(float R, const FresnelReflectance& bare) {
+    const float scale = bare.R > 0 ? R / bare.R : 0.f;
+    const auto excess = [](float Rx) { return Rx < 1 ? Rx * (1 - Rx) / (1 + Rx) : 0.f; };
+    return bare.R > 0 ? (excess(std::min(1.f, scale * bare.Rs)) + excess(std::min(1.f, scale * bare.Rp))) / 2
+                      : excess(R);
   }
   // The reflected and transmitted shares (with the weight) that choose between the two when sampling.
-  std::array<float, 2> shares(float face) const { return {reflected(face), transmission_ * transmitted(face)}; }
+  std::array<float, 2> shares(const FaceReflectance<float>& face) const {
+    return {reflected(face), transmission_ * transmitted(face)};
+  }
 
   TrowbridgeReitz distribution_;
   bool smooth_, compensate_;

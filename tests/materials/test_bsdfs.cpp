@@ -40,6 +40,14 @@ TEST_CASE("smooth dielectric: R + T = 1 over angles, indices and wavelengths, wi
   CHECK(thin.reflectance(wo)[0] + t->weight[0] == Approx(1).margin(1e-6));
   CHECK(length(t->wi + wo) == Approx(0).margin(1e-6));
   CHECK(thin.reflectance(wo)[0] > fresnel_dielectric(wo.z, 1.5f));  // two interfaces reflect more
+  // Each polarisation's inter-reflections summed apart: T' = ½ Σ (1 − R_x) / (1 + R_x), x = s, p.
+  for (const float c : {1.f, 0.8f, 0.5f, 0.3f, 0.1f}) {
+    const Vec3f w(std::sqrt(1 - c * c), 0, c);
+    const FresnelReflectance F = fresnel_dielectric_polarized(c, 1.5f);
+    const double expected = ((1.0 - F.Rs) / (1.0 + F.Rs) + (1.0 - F.Rp) / (1.0 + F.Rp)) / 2;
+    INFO("cos " << c);
+    CHECK(thin.transmission(w)->weight[0] == Approx(expected).margin(1e-6));
+  }
 }
 
 TEST_CASE("refraction is reciprocal: the same share both ways, radiance weights differ by eta squared") {

@@ -160,8 +160,8 @@ namespace {
 // glTF's thin-walled transmission (KHR_materials_transmission without KHR_materials_volume),
 // written out in double from its definition: the reflection lobe mirrored through the surface
 // (the light refracts only at the microfacets, so the walls' two refractions cancel), GGX with
-// the height-correlated Smith term, and the sheet's two faces' Fresnel inter-reflections,
-// T = 1 − 2R/(1 + R) (pbrt-v4 §9.5.1; the extension's own sketch takes one face, 1 − R):
+// the height-correlated Smith term, and the sheet's two faces' Fresnel inter-reflections for each
+// polarisation, T = ½ Σ (1 − R_x)/(1 + R_x), x = s, p (the extension's own sketch takes one face, 1 − R):
 //   f_t(wo, wi) = T(wo·m) D(m) G(wo, wi') / (4 |cos θ_o| |cos θ_i|),  wi' = wi mirrored, m ∝ wo + wi'.
 double thin_pane_btdf(const Vec3d& wo, const Vec3d& wi, double roughness, double eta) {
   const double a2 = sqr(sqr(roughness));
@@ -170,8 +170,8 @@ double thin_pane_btdf(const Vec3d& wo, const Vec3d& wi, double roughness, double
   const auto lambda = [&](const Vec3d& w) { return (std::sqrt(1 + a2 * (1 - w.z * w.z) / (w.z * w.z)) - 1) / 2; };
   const double G = 1 / (1 + lambda(wo) + lambda(mirrored));
   const double c = dot(wo, m), cos_t = std::sqrt(1 - (1 - c * c) / (eta * eta));
-  const double R = (sqr((c - eta * cos_t) / (c + eta * cos_t)) + sqr((eta * c - cos_t) / (eta * c + cos_t))) / 2;
-  const double T = 1 - 2 * R / (1 + R);
+  const double Rs = sqr((c - eta * cos_t) / (c + eta * cos_t)), Rp = sqr((eta * c - cos_t) / (eta * c + cos_t));
+  const double T = ((1 - Rs) / (1 + Rs) + (1 - Rp) / (1 + Rp)) / 2;
   return T * D * G / (4 * std::abs(wo.z * wi.z));
 }
 
