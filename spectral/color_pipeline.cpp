@@ -111,4 +111,13 @@ Chromaticities ColorPipeline::chromaticities(std::string_view space) const {
   return it->second;
 }
 
+std::array<std::array<double, 3>, 3> ColorPipeline::matrix_from_xyz(std::string_view space) const {
+  float unit[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // X, Y, Z, one per triple
+  convert(kXyz, space, unit, 3);
+  std::array<std::array<double, 3>, 3> m;
+  for (int row = 0; row < 3; ++row)
+    for (int column = 0; column < 3; ++column) m[row][column] = unit[column * 3 + row];
+  return m;
+}
+
 }  // namespace prism

@@ -3,6 +3,7 @@
 // goes through OpenColorIO, with Prism's own config (data/ocio/config.ocio), to the output
 // colour space, or through a display view to an 8-bit preview.
 
+#include <array>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -34,6 +35,9 @@ class ColorPipeline {
 
   // Converts interleaved RGB triples in place.
   void convert(std::string_view from, std::string_view to, float* rgb, size_t pixels) const;
+  // The 3×3 matrix (rows: the space's channels) that takes the film's XYZ to a linear output
+  // space, found by converting the unit vectors (every output space of the config is linear).
+  std::array<std::array<double, 3>, 3> matrix_from_xyz(std::string_view space) const;
   // Converts XYZ triples in place through a display's view (e.g. sRGB / Standard) for previews.
   void xyz_to_display(std::string_view display, std::string_view view, float* rgb, size_t pixels) const;
 

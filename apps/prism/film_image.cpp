@@ -20,8 +20,18 @@ std::vector<float> plane(const std::vector<float>& interleaved, int fields, int 
 
 }  // namespace
 
+OutputChannels output_channels(const std::string& colorspace, const WhiteBalance* white_balance) {
+  const OutputChannels space = ColorPipeline::standard().matrix_from_xyz(colorspace);
+  if (!white_balance) return space;
+  OutputChannels m{};
+  for (int row = 0; row < 3; ++row)
+    for (int column = 0; column < 3; ++column)
+      for (int i = 0; i < 3; ++i) m[row][column] += space[row][i] * white_balance->m[i * 3 + column];
+  return m;
+}
+
 // The AOV layers and spectral bins the options ask for.
-std::vector<ExrChannel> extra_channels(const Film& film, const std::string& colorspace) {
+std::vector<ExrChannel> extra_channels(const Film& film, const std::string& colorspace, const OutputChannels& output) {
   std::vector<ExrChannel> channels;
   const auto add_layer = [&](const std::string& layer, const std::vector<float>& image, const char* names) {
     for (int c = 0; c < 3; ++c) channels.push_back({layer + "." + names[c], plane(image, 3, c)});
@@ -34,10 +44,14 @@ std::vector<ExrChannel> extra_channels(const Film& film, const std::string& colo
   if (film.aovs() & kAovNormal) add_layer("N", film.normal_image(), "XYZ");
   if (film.aovs() & kAovDepth) channels.push_back({"Z", film.depth_image()});
   if (film.aovs() & kAovVariance) {
-    const ErrorEstimate error(film);
-    std::vector<float> v(film.pixel_count());
-    for (size_t p = 0; p < v.size(); ++p) v[p] = float(error.variance_of_mean(p, 1));
-    channels.push_back({"variance.Y", std::move(v)});
+    const ErrorEstimate error(film, output);
+    std::vector<float> rgb(film.pixel_count() * 3), y(film.pixel_count());
+    for (size_t p = 0; p < film.pixel_count(); ++p) {
+      for (int k = 0; k < 3; ++k) rgb[p * 3 + k] = float(error.output_variance_of_mean(p, k));
+      y[p] = float(error.variance_of_mean(p, 1));
+    }
+    add_layer("variance", rgb, "RGB");
+    channels.push_back({"variance.Y", std::move(y)});
   }
   if (film.aovs() & kAovSpp) {
     std::vector<float> n(film.pixel_count());
@@ -58,7 +72,7 @@ ExrImage film_image(const Film& film, const std::string& colorspace, const White
                  film.xyz_image(),
                  ColorPipeline::standard().chromaticities(colorspace),
                  {},
-                 extra_channels(film, colorspace)};
+                 extra_channels(film, colorspace, output_channels(colorspace, white_balance))};
   if (white_balance) white_balance->apply(image.rgb.data(), image.rgb.size() / 3);
   ColorPipeline::standard().convert(ColorPipeline::kXyz, colorspace, image.rgb.data(), image.rgb.size() / 3);
   return image;

@@ -7,13 +7,19 @@
 #include <optional>
 #include <string>
 
+#include "core/render/error_estimate.h"
 #include "core/render/film.h"
 #include "core/render/image_output.h"
 #include "spectral/white_balance.h"
 
 namespace prism {
 
-// With a white balance, the beauty's XYZ is adapted first (white_balance.h); AOVs are not.
+// The image's channels as rows of the matrix that takes the film's XYZ to them: the white balance
+// (if any), then the colour space's matrix. The error estimate and adaptive sampling measure these.
+OutputChannels output_channels(const std::string& colorspace, const WhiteBalance* white_balance = nullptr);
+
+// With a white balance, the beauty's XYZ is adapted first (white_balance.h); AOVs are not. The
+// variance AOV holds the estimated variance of each pixel's Y and of its R, G and B as written.
 ExrImage film_image(const Film& film, const std::string& colorspace, const WhiteBalance* white_balance = nullptr);
 
 // --white-balance: a named illuminant, a temperature in kelvin (a blackbody), or "none" (nothing).

@@ -25,6 +25,7 @@ void run(const MergeArgs& args) {
   const std::optional<WhiteBalance> balance = white_balance_option(args.white_balance);
   const RenderState merged = merge_parts({args.parts.begin(), args.parts.end()});
   ExrImage image = film_image(merged.film, colorspace, balance ? &*balance : nullptr);
+  const ErrorEstimate error(merged.film, output_channels(colorspace, balance ? &*balance : nullptr));
   image.metadata = {
       {"software", std::string("Prism " PRISM_VERSION)},
       {"prism.spp", merged.part.total},
@@ -33,7 +34,8 @@ void run(const MergeArgs& args) {
       {"prism.seconds", merged.stats.seconds},
       {"prism.invalidSamples", std::to_string(merged.stats.invalid_samples)},
       {"prism.colorSpace", colorspace},
-      {"prism.estimatedRelRmse", ErrorEstimate(merged.film).rel_rmse()},
+      {"prism.estimatedRelRmse", error.rel_rmse()},
+      {"prism.estimatedRelRmseRGB", error.output_rel_rmse()},
   };
   if (balance) image.metadata.push_back({"prism.whiteBalance", balance->name});
   write_exr(args.output, image, args.half);

@@ -99,22 +99,27 @@ std::string fingerprint(const RenderArgs& args, const Scene& scene, const Camera
       "camera-hash={:016x} size={}x{} "
       "integrator={} merge-radius={} "
       "seed={} sampler={} "
-      "wavelengths={} max-depth={} light-sampling={} noise-threshold={} aovs={} spectral-bins={} "
+      "wavelengths={} max-depth={} light-sampling={} noise-threshold={} noise-channels={} aovs={} spectral-bins={} "
       "energy-compensation={} gltf-scene={} variant={} animation={}",
       scene.source.filename().string(), scene.source_hash, time ? fmt::format("{}", *time) : "-", s.env,
       std::filesystem::path(s.env_map).filename().string(), env_map ? env_map->hash : 0, s.env_rotate, s.env_scale,
       std::filesystem::path(s.env_spectrum).filename().string(), environment_hash(scene), s.camera, camera.hash(),
       camera.width(), camera.height(), integrator(o.integrator).name, o.merge_radius, o.seed, sampler_name(o.sampler),
-      o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf", o.noise_threshold, o.aovs,
-      o.spectral_bins.to_string(), s.energy_compensation, s.gltf.scene ? fmt::format("{}", *s.gltf.scene) : "-",
+      o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf", o.noise_threshold,
+      o.noise_threshold > 0  // the output space's channels steer adaptive sampling
+          ? fmt::format("{}/{}", ColorPipeline::standard().canonical_name(args.colorspace), args.white_balance)
+          : "-",
+      o.aovs, o.spectral_bins.to_string(), s.energy_compensation, s.gltf.scene ? fmt::format("{}", *s.gltf.scene) : "-",
       s.gltf.variant, s.gltf.animation);
 }
 
 // The image's error as the log and the header state it.
-std::string error_summary(const Film& film) {
-  const ErrorEstimate error(film);
-  return fmt::format("estimated relative RMSE {:.4g} (per pixel: median {:.3g}, 90th percentile {:.3g})",
-                     error.rel_rmse(), error.pixel_rel_rmse_quantile(0.5), error.pixel_rel_rmse_quantile(0.9));
+std::string error_summary(const Film& film, const OutputChannels& output) {
+  const ErrorEstimate error(film, output);
+  return fmt::format(
+      "estimated relative RMSE {:.4g} of luminance (per pixel: median {:.3g}, 90th percentile {:.3g}), {:.4g} of RGB",
+      error.rel_rmse(), error.pixel_rel_rmse_quantile(0.5), error.pixel_rel_rmse_quantile(0.9),
+      error.output_rel_rmse());
 }
 
 struct SampleCounts {
@@ -159,6 +164,9 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
   options.aovs = parse_aovs(args.aovs);
   if (!args.spectral_bins.empty()) options.spectral_bins = SpectralBins::parse(args.spectral_bins);
   parse_part(args, options);
+  const std::optional<WhiteBalance> balance = white_balance_option(args.white_balance);
+  const OutputChannels channels = output_channels(colorspace, balance ? &*balance : nullptr);
+  options.noise_channels = channels;
   const bool part = !args.samples.empty() || !args.crop.empty();
   const std::filesystem::path checkpoint = output + ".checkpoint";
 
@@ -184,7 +192,7 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
                           if (log::level() >= log::Level::verbose)  // the error summary sorts the pixels
                             log::verbose("pass {}: {} spp, {} pixels sampled, {:.1f} s; {}", pass.pass + 1,
                                          pass.samples_end, pass.active_pixels, state.stats.seconds,
-                                         error_summary(state.film));
+                                         error_summary(state.film, channels));
                           if (args.checkpoint > 0 && seconds_since(last_checkpoint) >= args.checkpoint) {
                             save_checkpoint(checkpoint, state, print);
                             last_checkpoint = std::chrono::steady_clock::now();
@@ -193,7 +201,7 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
   const RenderResult result = render(*prepared.world, camera, options, control, std::move(resume));
   const Film& film = result.state.film;
   log::info("{}", result.stats().summary());
-  log::info("{}", error_summary(film));
+  log::info("{}", error_summary(film, channels));
   const RenderPart& done = result.state.part;
   const bool complete = result.state.passes >= pass_count(done.sample_end - done.sample_begin);
   if (result.interrupted) log::warn("interrupted after pass {}: writing what it has", result.state.passes);
@@ -213,7 +221,7 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
     return true;
   }
   const SampleCounts counts = sample_counts(film);
-  const std::optional<WhiteBalance> balance = white_balance_option(args.white_balance);
+  const ErrorEstimate error(film, channels);
   ExrImage image = film_image(film, colorspace, balance ? &*balance : nullptr);
   image.metadata = {
       {"software", std::string("Prism " PRISM_VERSION)},
@@ -234,7 +242,8 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
       {"prism.sceneFeatures", prepared.world->features().to_string()},
       {"prism.samples", std::to_string(result.stats().samples)},  // with the error estimate's replicates
       {"prism.invalidSamples", std::to_string(result.stats().invalid_samples)},
-      {"prism.estimatedRelRmse", ErrorEstimate(film).rel_rmse()},
+      {"prism.estimatedRelRmse", error.rel_rmse()},
+      {"prism.estimatedRelRmseRGB", error.output_rel_rmse()},
       {"prism.interrupted", int(result.interrupted)},
   };
   if (balance) image.metadata.push_back({"prism.whiteBalance", balance->name});

@@ -12,15 +12,15 @@ namespace prism {
 
 namespace {
 
-// Version 5: exact fixed-point film sums (with the second replicate's) of the part's window only
-// (the crop, else the frame), then the wide sums of the window's pixels that have them (film.h),
-// the part of the render, a checksum at the end.
-constexpr char kMagic[8] = {'P', 'R', 'I', 'S', 'M', 'C', 'K', '5'};
+// Version 6: exact fixed-point film sums (with the second replicate's and the XYZ products) of
+// the part's window only (the crop, else the frame), then the wide sums of the window's pixels
+// that have them (film.h), the part of the render, a checksum at the end.
+constexpr char kMagic[8] = {'P', 'R', 'I', 'S', 'M', 'C', 'K', '6'};
 
 // The wide sums of one pixel, field by field, in a fixed order.
 template <typename Sums, typename Visit>
 void visit_wide_sums(Sums& w, Visit&& visit) {
-  for (auto* field : {&w.sum, &w.sq, &w.second_sum, &w.splat})
+  for (auto* field : {&w.sum, &w.sq, &w.cross, &w.second_sum, &w.splat})
     for (auto& sum : *field) visit(sum);
   for (auto& sum : w.spectral) visit(sum);
 }

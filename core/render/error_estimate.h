@@ -38,9 +38,16 @@ inline bool replicated_pixel(Vec2i p, uint64_t seed) {
          p.y % kReplicatedBlock == int(h / kReplicatedBlock % kReplicatedBlock);
 }
 
+// The channels of an output colour space as the rows of the matrix that takes XYZ to them (every
+// output space Prism writes is linear in XYZ: ColorPipeline::matrix_from_xyz); XYZ's own by default.
+using OutputChannels = std::array<std::array<double, 3>, 3>;
+inline constexpr OutputChannels kXyzChannels{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+
 class ErrorEstimate {
  public:
-  explicit ErrorEstimate(const Film& film);
+  // With the output space's channels, whose variances come from the film's squares and products
+  // (colour noise: the wavelengths' spread shows in them more than in luminance).
+  explicit ErrorEstimate(const Film& film, const OutputChannels& output = kXyzChannels);
 
   // Estimated variance of pixel p's mean of channel c (0, 1, 2: X, Y, Z).
   double variance_of_mean(size_t p, int c) const { return calibration_[c] * film_.variance_of_mean(p, c); }
@@ -51,13 +58,21 @@ class ErrorEstimate {
   // Per-pixel relative RMSE sqrt(variance of the mean) / Y, at quantile q (0..1) over the
   // pixels with Y > 0.
   double pixel_rel_rmse_quantile(double q) const;
+  // Estimated variance of pixel p's mean of output channel k, calibrated by that channel's own κ.
+  double output_variance_of_mean(size_t p, int k) const {
+    return output_calibration_[k] * film_.variance_of_mean(p, output_[k]);
+  }
+  // Estimated relative RMSE of the output image: sqrt(mean over pixels and channels of their
+  // variances) / the mean over pixels and channels of their values (as `prism compare` measures).
+  double output_rel_rmse() const;
   // κ for X, Y and Z, and how many replicated pixels measured it.
   const std::array<double, 3>& calibration() const { return calibration_; }
   size_t replicated_pixels() const { return replicated_pixels_; }
 
  private:
   const Film& film_;
-  std::array<double, 3> calibration_{1, 1, 1};
+  OutputChannels output_;
+  std::array<double, 3> calibration_{1, 1, 1}, output_calibration_{1, 1, 1};
   size_t replicated_pixels_ = 0;
 };
 

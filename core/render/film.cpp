@@ -6,6 +6,11 @@
 
 namespace prism {
 
+namespace {
+// The channel pairs of the products kept: XY, XZ, YZ.
+constexpr std::pair<int, int> kCrossPairs[3] = {{0, 1}, {0, 2}, {1, 2}};
+}  // namespace
+
 Film::Film(int width, int height, uint32_t aovs, SpectralBins bins)
     : width_(width),
       height_(height),
@@ -13,6 +18,7 @@ Film::Film(int width, int height, uint32_t aovs, SpectralBins bins)
       bins_(std::move(bins)),
       sum_(pixel_count() * 3, 0),
       sq_(pixel_count() * 3, 0),
+      cross_(pixel_count() * 3, 0),
       count_(pixel_count(), 0),
       second_sum_(pixel_count() * 3, 0),
       second_count_(pixel_count(), 0),
@@ -22,8 +28,8 @@ Film::Film(int width, int height, uint32_t aovs, SpectralBins bins)
       wide_(pixel_count()) {}
 
 uint64_t Film::field_bytes_per_pixel(uint32_t aovs, const SpectralBins& bins) {
-  const uint64_t fixed = 3 + 3 + 3 + (aovs & (kAovAlbedo | kAovNormal | kAovDepth) ? kAovFields : 0) + bins.count() +
-                         (aovs & kFilmSplats ? 3 : 0);
+  const uint64_t fixed = 3 + 3 + 3 + 3 + (aovs & (kAovAlbedo | kAovNormal | kAovDepth) ? kAovFields : 0) +
+                         bins.count() + (aovs & kFilmSplats ? 3 : 0);
   return fixed * sizeof(Fixed) + 2 * sizeof(uint32_t);
 }
 
@@ -51,6 +57,11 @@ Film::FixedXyz Film::to_fixed_xyz(const Xyz& xyz) {
     f.wide[c] = fixed ? 0.0 : v[c];
     f.has_wide |= !fixed;
   }
+  // The products XY, XZ, YZ: fixed-point while both channels are (the product stays below 2^62).
+  for (int k = 0; k < 3; ++k) {
+    const auto [a, b] = kCrossPairs[k];
+    f.cross[k] = f.wide[a] == 0 && f.wide[b] == 0 ? to_fixed(v[a] * v[b], kFixedSquareBits) : Fixed(0);
+  }
   f.valid = valid;
   return f;
 }
@@ -59,16 +70,22 @@ bool Film::add_repeated(size_t p, const FixedXyz& xyz, uint32_t n, int replicate
   for (int c = 0; c < 3; ++c) {
     sum_[p * 3 + c] += n * xyz.value[c];
     sq_[p * 3 + c] += n * xyz.square[c];
+    cross_[p * 3 + c] += n * xyz.cross[c];
     if (replicate != 0) second_sum_[p * 3 + c] += n * xyz.value[c];
   }
   if (xyz.has_wide) {
     WideSums& w = wide(p);
+    const double v[3] = {xyz.wide[0] != 0 ? xyz.wide[0] : to_double(xyz.value[0]),
+                         xyz.wide[1] != 0 ? xyz.wide[1] : to_double(xyz.value[1]),
+                         xyz.wide[2] != 0 ? xyz.wide[2] : to_double(xyz.value[2])};
     for (int c = 0; c < 3; ++c)
       if (xyz.wide[c] != 0) {
         w.sum[c].add(xyz.wide[c], n);
         w.sq[c].add(xyz.wide[c] * xyz.wide[c], n);
         if (replicate != 0) w.second_sum[c].add(xyz.wide[c], n);
       }
+    for (int k = 0; k < 3; ++k)  // a product with a wide channel is summed wide (rounded to an integer)
+      if (const auto [a, b] = kCrossPairs[k]; xyz.wide[a] != 0 || xyz.wide[b] != 0) w.cross[k].add(v[a] * v[b], n);
   }
   (replicate == 0 ? count_ : second_count_)[p] += n;
   return xyz.valid;
@@ -102,14 +119,14 @@ void Film::merge(const Film& other) {
   const auto add = [](auto& into, const auto& from) {
     for (size_t i = 0; i < into.size(); ++i) into[i] += from[i];
   };
-  add(sum_, other.sum_), add(sq_, other.sq_), add(count_, other.count_), add(second_sum_, other.second_sum_),
-      add(second_count_, other.second_count_), add(aov_, other.aov_), add(spectral_, other.spectral_),
-      add(splat_, other.splat_);
+  add(sum_, other.sum_), add(sq_, other.sq_), add(cross_, other.cross_), add(count_, other.count_),
+      add(second_sum_, other.second_sum_), add(second_count_, other.second_count_), add(aov_, other.aov_),
+      add(spectral_, other.spectral_), add(splat_, other.splat_);
   other.visit_wide([&](size_t p, const WideSums& from) {
     WideSums& into = wide(p);
     for (int c = 0; c < 3; ++c)
-      into.sum[c] += from.sum[c], into.sq[c] += from.sq[c], into.second_sum[c] += from.second_sum[c],
-          into.splat[c] += from.splat[c];
+      into.sum[c] += from.sum[c], into.sq[c] += from.sq[c], into.cross[c] += from.cross[c],
+          into.second_sum[c] += from.second_sum[c], into.splat[c] += from.splat[c];
     for (size_t b = 0; b < into.spectral.size(); ++b) into.spectral[b] += from.spectral[b];
   });
 }
@@ -136,6 +153,25 @@ double Film::replicate_mean(size_t p, int c, int replicate) const {
   if (replicate == 1) return second_count_[p] > 0 ? second / second_count_[p] : 0.0;
   const double all = to_double(sum_[p * 3 + c]) + wide_value(p, [c](const WideSums& w) { return w.sum[c]; });
   return count_[p] > 0 ? (all - second) / count_[p] : 0.0;
+}
+
+// s²/n of w · (X, Y, Z): Σ(w·v)² = Σᵢ wᵢ² Σvᵢ² + 2 Σᵢ<ⱼ wᵢwⱼ Σvᵢvⱼ, from the squares and products.
+double Film::variance_of_mean(size_t p, const std::array<double, 3>& w) const {
+  const uint32_t n = count_[p] + second_count_[p];
+  if (n < 2) return 0.0;
+  double sy = 0, sy2 = 0;
+  for (int c = 0; c < 3; ++c) {
+    sy += w[c] * (to_double(sum_[p * 3 + c]) + wide_value(p, [c](const WideSums& s) { return s.sum[c]; }));
+    sy2 += w[c] * w[c] *
+           (to_double(sq_[p * 3 + c], kFixedSquareBits) + wide_value(p, [c](const WideSums& s) { return s.sq[c]; }));
+  }
+  for (int k = 0; k < 3; ++k) {
+    const auto [a, b] = kCrossPairs[k];
+    sy2 +=
+        2 * w[a] * w[b] *
+        (to_double(cross_[p * 3 + k], kFixedSquareBits) + wide_value(p, [k](const WideSums& s) { return s.cross[k]; }));
+  }
+  return std::max(0.0, (sy2 - sy * sy / n) / (double(n - 1) * n));
 }
 
 // s²/n with s² = (Σy² − (Σy)²/n) / (n − 1), the unbiased sample variance, from the exact sums.

@@ -1,8 +1,9 @@
 #pragma once
 // The film: per pixel, the sum of its CIE XYZ sample estimates (box filter over the pixel's
-// area) and their count, the sums of the squares of the samples' X, Y and Z and the XYZ sum of
-// the pixel's second replicate (if it takes one) for the error estimate (error_estimate.h), and
-// on request the first-hit AOV sums and spectral bins.
+// area) and their count, the sums of the squares of the samples' X, Y and Z and of their products
+// XY, XZ, YZ (so that the variance of any linear combination, an output colour space's channels,
+// is known) and the XYZ sum of the pixel's second replicate (if it takes one) for the error
+// estimate (error_estimate.h), and on request the first-hit AOV sums and spectral bins.
 //
 // Every sum is exact: each sample is rounded once to a fixed-point integer (fixed_point.h) and
 // integers add associatively. So a film is a pure function of WHICH samples each pixel took,
@@ -14,6 +15,7 @@
 // and is added as 0.
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -68,8 +70,9 @@ class Film {
   bool add(size_t p, const FilmSample& s, int replicate = 0);
   // One sample value rounded to the film's integers once, for adding it many times.
   struct FixedXyz {
-    Fixed value[3], square[3];  // 0 for a channel beyond the fixed-point range, which `wide` holds
-    double wide[3];             // the channels beyond it (0 for the others)
+    // 0 where a channel is beyond the fixed-point range, which `wide` holds (cross: XY, XZ, YZ).
+    Fixed value[3], square[3], cross[3];
+    double wide[3];  // the channels beyond it (0 for the others)
     bool has_wide;
     bool valid;  // false for a NaN or Inf value, whose integers are those of 0
   };
@@ -99,6 +102,8 @@ class Film {
   // Adds a thread's light-tracing splats (a film made with kFilmSplats).
   void add_splats(const SplatBuffer& splats);
   double variance_of_mean(size_t p, int c) const;
+  // The same for the linear combination w · (X, Y, Z) of the channels (an output space's channel).
+  double variance_of_mean(size_t p, const std::array<double, 3>& w) const;
   // Mean of channel c of the samples of pixel p's replicate 0 and of its replicate 1.
   double replicate_mean(size_t p, int c, int replicate) const;
   // The same for the luminance Y.
@@ -117,18 +122,18 @@ class Film {
   // The raw fields, in a fixed order, for checkpoint files (to write, and to read back).
   template <typename Visit>
   void visit_fields(Visit&& visit) const {
-    visit(sum_), visit(sq_), visit(count_), visit(second_sum_), visit(second_count_), visit(aov_), visit(spectral_),
-        visit(splat_);
+    visit(sum_), visit(sq_), visit(cross_), visit(count_), visit(second_sum_), visit(second_count_), visit(aov_),
+        visit(spectral_), visit(splat_);
   }
   template <typename Visit>
   void visit_fields(Visit&& visit) {
-    visit(sum_), visit(sq_), visit(count_), visit(second_sum_), visit(second_count_), visit(aov_), visit(spectral_),
-        visit(splat_);
+    visit(sum_), visit(sq_), visit(cross_), visit(count_), visit(second_sum_), visit(second_count_), visit(aov_),
+        visit(spectral_), visit(splat_);
   }
   // The wide sums of the pixels that have them (see WideSums), for checkpoint files: visit(p,
   // sums) for each such pixel p, in pixel order; wide(p) makes pixel p's to read them into.
   struct WideSums {
-    WideSum sum[3], sq[3], second_sum[3], splat[3];
+    WideSum sum[3], sq[3], cross[3], second_sum[3], splat[3];
     std::vector<WideSum> spectral;  // one per bin, or none
     bool operator==(const WideSums&) const = default;
   };
@@ -154,6 +159,7 @@ class Film {
   SpectralBins bins_;
   std::vector<Fixed> sum_;              // XYZ sums of all samples
   std::vector<Fixed> sq_;               // Σ X², Σ Y², Σ Z², at kFixedSquareBits
+  std::vector<Fixed> cross_;            // Σ XY, Σ XZ, Σ YZ, at kFixedSquareBits
   std::vector<uint32_t> count_;         // samples of replicate 0
   std::vector<Fixed> second_sum_;       // XYZ sums of replicate 1
   std::vector<uint32_t> second_count_;  // samples of replicate 1

@@ -181,7 +181,7 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
   while (state.passes < passes) {
     const int end = options.sample_begin + pass_end(state.passes, part_spp);
     if (options.noise_threshold > 0) {
-      find_unconverged(state.film, options.noise_threshold, active);
+      find_unconverged(state.film, options.noise_threshold, active, options.noise_channels);
       if (std::find(active.begin(), active.end(), 1) == active.end()) {  // every pixel converged
         state.passes = passes;
         break;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/render/camera.h"
+#include "core/render/error_estimate.h"
 #include "core/render/film.h"
 #include "core/render/integrators.h"
 #include "core/render/path_integrator.h"
@@ -49,11 +50,12 @@ struct RenderOptions {
   SamplerKind sampler = SamplerKind::sobol;
   PathOptions path;
   float merge_radius = 0;  // VCM's initial merging radius (scene units); 0: kMergeRadius × the scene's radius
-  std::optional<PathFeatures> features;  // default: what the scene needs (benchmarks force more)
-  double noise_threshold = 0;            // adaptive sampling (adaptive_sampling.h); 0: off
-  double time_limit = 0;                 // seconds; stop after the pass that reaches it; 0: none
-  uint32_t aovs = 0;                     // Aov flags
-  SpectralBins spectral_bins;            // none: no spectral image
+  std::optional<PathFeatures> features;          // default: what the scene needs (benchmarks force more)
+  double noise_threshold = 0;                    // adaptive sampling (adaptive_sampling.h); 0: off
+  OutputChannels noise_channels = kXyzChannels;  // the channels its error is measured in (the output space's)
+  double time_limit = 0;                         // seconds; stop after the pass that reaches it; 0: none
+  uint32_t aovs = 0;                             // Aov flags
+  SpectralBins spectral_bins;                    // none: no spectral image
   bool progress = true;
 };
 

@@ -27,8 +27,8 @@ std::string render_args(int threads, uint64_t seed = 5, const std::string& integ
 
 // The channels of an EXR image (by default all those render_args writes), as bytes.
 std::vector<char> pixels(const std::filesystem::path& exr,
-                         const std::vector<const char*>& channels = {"R", "G", "B", "variance.Y", "albedo.R",
-                                                                     "albedo.G", "albedo.B"}) {
+                         const std::vector<const char*>& channels = {"R", "G", "B", "variance.R", "variance.Y",
+                                                                     "albedo.R", "albedo.G", "albedo.B"}) {
   std::vector<char> bytes;
   for (const char* name : channels) {
     const std::vector<float> c = read_exr_channel(exr, name);

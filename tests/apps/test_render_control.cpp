@@ -119,6 +119,7 @@ TEST_CASE("a first SIGINT or SIGTERM finishes the pass and writes the image with
     CHECK(spp < 1000000);
     CHECK(header_value<Imf::IntAttribute>(exr, "prism.sppMin") == spp);
     CHECK(header_value<Imf::DoubleAttribute>(exr, "prism.estimatedRelRmse") > 0);
+    CHECK(header_value<Imf::DoubleAttribute>(exr, "prism.estimatedRelRmseRGB") > 0);
     CHECK(slurp(p.err).find("interrupted after pass") != std::string::npos);
     std::filesystem::remove(p.err);
   }
@@ -184,8 +185,8 @@ TEST_CASE("render --aov writes OpenEXR layers named as compositors expect") {
                               exr.string() + "\"",
                           &err) == 0);
   Imf::InputFile in(exr.c_str());
-  for (const char* name :
-       {"R", "G", "B", "A", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z", "variance.Y", "spp"})
+  for (const char* name : {"R", "G", "B", "A", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z",
+                           "variance.R", "variance.G", "variance.B", "variance.Y", "spp"})
     CHECK(in.header().channels().findChannel(name));
   const auto spp = read_exr_channel(exr, "spp");
   CHECK(std::all_of(spp.begin(), spp.end(), [](float n) { return n == 4; }));

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <map>
 
+#include "core/render/adaptive_sampling.h"
 #include "core/render/checkpoint.h"
 #include "core/render/error_estimate.h"
 #include "core/render/pass_schedule.h"
@@ -63,7 +64,7 @@ std::vector<char> film_bytes(const Film& film) {
       bytes.insert(bytes.end(), static_cast<const char*>(p), static_cast<const char*>(p) + n);
     };
     add(&pixel, sizeof(pixel));
-    for (const auto* field : {&w.sum, &w.sq, &w.second_sum, &w.splat})
+    for (const auto* field : {&w.sum, &w.sq, &w.cross, &w.second_sum, &w.splat})
       for (const WideSum& sum : *field) add(sum.words().data(), sizeof(sum.words()));
     for (const WideSum& sum : w.spectral) add(sum.words().data(), sizeof(sum.words()));
   });
@@ -96,6 +97,46 @@ TEST_CASE("a film given n equal samples at once holds what n single adds give, b
     CHECK(film_bytes(one) == film_bytes(many));
     CHECK(many.samples(4) == 8);
     CHECK(many.second_replicate_samples(4) == 7);
+  }
+}
+
+TEST_CASE("a film knows the variance of any linear combination of X, Y, Z: an output space's channels") {
+  // Colour noise with a steady luminance: X and Z swing against each other, Y barely moves. The
+  // Rec.709 red and blue channels see it where Y does not. One pixel also has samples beyond the
+  // fixed-point range, whose products go to the wide sums.
+  const OutputChannels rgb{
+      {{3.2404542, -1.5371385, -0.4985314}, {-0.9692660, 1.8760108, 0.0415560}, {0.0556434, -0.2040259, 1.0572252}}};
+  Film film(2, 1);
+  std::vector<std::array<double, 3>> samples[2];
+  for (int i = 0; i < 24; ++i) {
+    const float swing = 0.3f * float((i * 7) % 11 - 5) / 5;
+    const Xyz xyz{0.95f + swing, 1.f + 0.01f * float(i % 3), 1.09f - swing};
+    for (int p = 0; p < 2; ++p) {
+      const Xyz v = p == 0 ? xyz : xyz * (i % 4 == 0 ? 4e9f : 1.f);
+      REQUIRE(film.add(p, FilmSample{v}, i % 2));
+      samples[p].push_back({v.x, v.y, v.z});
+    }
+  }
+  for (int p = 0; p < 2; ++p) {
+    std::array<double, 3> mean{};
+    for (int k = 0; k < 3; ++k) {
+      double sum = 0, squares = 0;
+      for (const auto& v : samples[p]) {
+        const double c = rgb[k][0] * v[0] + rgb[k][1] * v[1] + rgb[k][2] * v[2];
+        sum += c, squares += c * c;
+      }
+      const double n = double(samples[p].size()), variance = (squares - sum * sum / n) / (n - 1) / n;
+      CHECK(film.variance_of_mean(p, rgb[k]) == Approx(variance).epsilon(1e-9));
+      mean[k] = sum / n;
+    }
+    if (p == 1) continue;
+    // Alone in its image, a pixel's adaptive error is its largest channel's standard error over
+    // its mean; in RGB it is twice and more its error in XYZ.
+    double expected = 0;
+    for (int k = 0; k < 3; ++k) expected = std::max(expected, std::sqrt(film.variance_of_mean(p, rgb[k])) / mean[k]);
+    const std::array<double, 3> xyz_mean{film.mean(p, 0), film.mean(p, 1), film.mean(p, 2)};
+    CHECK(adaptive_error(film, p, xyz_mean, rgb) == Approx(expected).epsilon(1e-9));
+    CHECK(adaptive_error(film, p, xyz_mean, rgb) > 2 * adaptive_error(film, p, xyz_mean));
   }
 }
 
