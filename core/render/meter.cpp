@@ -1,5 +1,6 @@
 #include "core/render/meter.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/base/error.h"
@@ -13,13 +14,18 @@ namespace prism {
 
 namespace {
 
-constexpr int kLanes = 8;  // wavelengths per path, the renderer's default
+constexpr int kLanes = 8;     // wavelengths per path, the renderer's default
+constexpr int kChunk = 4096;  // samples per task: a point's samples are shared out among the threads in these
 
 // A point's running sums: of the samples' illuminance and its square, and per spectral bin.
 struct Sums {
   double e = 0, e2 = 0;
   std::vector<double> spectral;
   int samples = 0;
+  void add(const Sums& o) {
+    e += o.e, e2 += o.e2;
+    for (size_t b = 0; b < spectral.size(); ++b) spectral[b] += o.spectral[b];
+  }
   double mean() const { return samples > 0 ? e / samples : 0; }
   // The standard error of the mean, from the samples' own spread (i.i.d.: conservative for the
   // stratified default sampler).
@@ -49,7 +55,7 @@ SurfaceInteraction meter_surface(const MeterPoint& point) {
   return si;
 }
 
-// Takes samples [from, to) of one point.
+// Takes samples [from, to) of one point, adding them to `sums`.
 void sample_point(const World& world, const MeterPoint& point, size_t index, int from, int to,
                   const MeterOptions& options, RadianceFn<kLanes> radiance, Sums& sums) {
   const std::optional<SurfaceInteraction> first = meter_surface(point);
@@ -72,7 +78,6 @@ void sample_point(const World& world, const MeterPoint& point, size_t index, int
         sums.spectral[bin] += kPi * double(L[i]) / (double(lambda.pdf()[i]) * kLanes) / options.bins.width(bin);
     }
   }
-  sums.samples = to;
 }
 
 }  // namespace
@@ -88,25 +93,40 @@ std::vector<MeterReading> measure(const World& world, const std::vector<MeterPoi
   std::vector<Sums> sums(points.size());
   for (Sums& s : sums) s.spectral.assign(options.bins.count(), 0.0);
   ThreadLimit limit(options.threads);
-  // With a target error, passes of doubling samples per point (16, 32, …, spp), each over the
-  // points not yet there; otherwise one pass of spp.
-  int end = options.rel_error > 0 ? std::min(16, options.spp) : options.spp;
-  for (;;) {
-    std::vector<size_t> open;
+  // With a target error, passes over the points not there yet: 16 samples, then as many as the
+  // point's error predicts (it falls as 1/√n), 10% over and at most 4 times those it has, up to
+  // spp; otherwise one pass of spp.
+  const bool targeted = options.rel_error > 0;
+  std::vector<int> end(points.size(), targeted ? std::min(16, options.spp) : options.spp);
+  for (int pass = 1;; ++pass) {
+    // Each open point's next samples in chunks, summed per chunk and then in chunk order: the same
+    // sums at any thread count, and a single point still keeps every thread busy.
+    struct Task {
+      size_t point;
+      int from, to;
+    };
+    std::vector<Task> tasks;
     for (size_t i = 0; i < points.size(); ++i)
-      if (sums[i].samples < end &&
-          !(options.rel_error > 0 && sums[i].samples > 0 && sums[i].converged(options.rel_error)))
-        open.push_back(i);
-    if (open.empty()) break;
-    Progress progress(fmt::format("measure ({} samples)", end), int64_t(open.size()), options.progress);
-    parallel_for(int64_t(open.size()), [&](int64_t k) {
-      const size_t i = open[k];
-      sample_point(world, points[i], i, sums[i].samples, end, options, radiance, sums[i]);
+      for (int from = sums[i].samples; from < end[i]; from += kChunk)
+        tasks.push_back({i, from, std::min(from + kChunk, end[i])});
+    if (tasks.empty()) break;
+    std::vector<Sums> partial(tasks.size(), Sums{0, 0, std::vector<double>(options.bins.count(), 0.0), 0});
+    Progress progress(fmt::format("measure (pass {})", pass), int64_t(tasks.size()), options.progress);
+    parallel_for(int64_t(tasks.size()), [&](int64_t k) {
+      const Task& t = tasks[k];
+      sample_point(world, points[t.point], t.point, t.from, t.to, options, radiance, partial[k]);
       progress.advance();
     });
     progress.finish();
-    if (end == options.spp) break;
-    end = std::min(end * 2, options.spp);
+    for (size_t k = 0; k < tasks.size(); ++k) sums[tasks[k].point].add(partial[k]);
+    for (size_t i = 0; i < points.size(); ++i) {
+      Sums& s = sums[i];
+      s.samples = end[i];
+      if (targeted && s.samples < options.spp && !s.converged(options.rel_error)) {
+        const double predicted = s.samples * sqr(s.std_error() / (options.rel_error * s.mean())) * 1.1;
+        end[i] = int(std::min<double>(options.spp, std::clamp(predicted, s.samples + 1.0, 4.0 * s.samples)));
+      }
+    }
   }
   std::vector<MeterReading> readings(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
