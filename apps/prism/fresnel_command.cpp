@@ -10,6 +10,7 @@
 #include "apps/prism/commands.h"
 #include "apps/prism/plot.h"
 #include "core/base/error.h"
+#include "core/base/number_list.h"
 #include "core/scene/refractive_index_file.h"
 #include "materials/catalogue.h"
 #include "materials/fresnel.h"
@@ -34,20 +35,9 @@ struct Reflector {
 };
 
 std::vector<float> parse_list(const std::string& text, const char* option) {
-  std::vector<float> values;
-  std::stringstream ss(text);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) {
-    try {
-      size_t used = 0;
-      values.push_back(std::stof(cell, &used));
-      if (used != cell.size() || !std::isfinite(values.back())) throw std::invalid_argument(cell);
-    } catch (const std::exception&) {
-      fail("{} '{}': '{}' is not a number", option, text, cell);
-    }
-  }
+  const std::vector<double> values = parse_numbers(text, option);
   if (values.empty()) fail("{} needs at least one number", option);
-  return values;
+  return {values.begin(), values.end()};
 }
 
 std::vector<Reflector> reflectors(const FresnelArgs& args) {

@@ -5,7 +5,6 @@
 
 #include <cstdio>
 #include <fstream>
-#include <sstream>
 
 #include "apps/prism/commands.h"
 #include "apps/prism/isolux_map.h"
@@ -13,6 +12,7 @@
 #include "core/base/atomic_file.h"
 #include "core/base/error.h"
 #include "core/base/log.h"
+#include "core/base/number_list.h"
 #include "core/render/meter.h"
 
 namespace prism {
@@ -26,22 +26,6 @@ struct MeasureArgs {
   MeterOptions options;
   bool quiet = false;
 };
-
-std::vector<double> numbers(const std::string& text, const std::string& what) {
-  std::vector<double> out;
-  std::stringstream ss(text);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) {
-    try {
-      size_t used = 0;
-      out.push_back(std::stod(cell, &used));
-      if (used != cell.size() || !std::isfinite(out.back())) throw std::invalid_argument(cell);
-    } catch (const std::exception&) {
-      fail("{} '{}': '{}' is not a number", what, text, cell);
-    }
-  }
-  return out;
-}
 
 MeterPoint meter_point(const std::vector<double>& v, const std::string& what) {
   if (v.size() != 6) fail("{}: expected X,Y,Z,NX,NY,NZ (a position and a normal)", what);
@@ -89,7 +73,7 @@ Grid grid_points(const std::string& text, const Scene& scene) {
   const size_t colon = text.rfind(':');
   if (colon != std::string::npos) {
     const std::string name = text.substr(0, colon);
-    const std::vector<double> spacing = numbers(text.substr(colon + 1), what);
+    const std::vector<double> spacing = parse_numbers(text.substr(colon + 1), what);
     if (spacing.size() != 1 || !(spacing[0] > 0)) fail("{}: expected MESH:SPACING, a positive spacing", what);
     Bounds3f box;
     for (const Instance& inst : scene.instances)
@@ -101,7 +85,7 @@ Grid grid_points(const std::string& text, const Scene& scene) {
               ny = std::max(1, int(std::round((box.hi.z - box.lo.z) / spacing[0])));
     return rectangle_grid({box.lo.x, top, box.lo.z}, {box.hi.x, top, box.hi.z}, nx, ny, what);
   }
-  const std::vector<double> v = numbers(text, what);
+  const std::vector<double> v = parse_numbers(text, what);
   if (v.size() != 8 || v[6] != std::floor(v[6]) || v[7] != std::floor(v[7]))
     fail("{}: expected MESH:SPACING or X0,Y0,Z0,X1,Y1,Z1,NX,NY", what);
   return rectangle_grid(Vec3f(float(v[0]), float(v[1]), float(v[2])), Vec3f(float(v[3]), float(v[4]), float(v[5])),
@@ -121,7 +105,7 @@ std::vector<MeterPoint> points_file(const std::string& file) {
         std::isalpha(static_cast<unsigned char>(line[line.find_first_not_of(" \t")])))
       continue;  // a header
     out.push_back(
-        meter_point(numbers(line, fmt::format("{} line {}", file, row)), fmt::format("{} line {}", file, row)));
+        meter_point(parse_numbers(line, fmt::format("{} line {}", file, row)), fmt::format("{} line {}", file, row)));
   }
   if (out.empty()) fail("--points {}: no points", file);
   return out;
@@ -143,7 +127,8 @@ void run(const MeasureArgs& args) {
   } else if (!args.points_file.empty()) {
     points = points_file(args.points_file);
   } else {
-    for (const std::string& p : args.points) points.push_back(meter_point(numbers(p, "--point " + p), "--point " + p));
+    for (const std::string& p : args.points)
+      points.push_back(meter_point(parse_numbers(p, "--point " + p), "--point " + p));
   }
   log::info("measuring illuminance at {} points{}", points.size(),
             options.rel_error > 0

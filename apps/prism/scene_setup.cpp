@@ -6,11 +6,11 @@
 #include <chrono>
 #include <cstdlib>
 #include <limits>
-#include <sstream>
 
 #include "core/base/clock.h"
 #include "core/base/error.h"
 #include "core/base/log.h"
+#include "core/base/number_list.h"
 #include "core/render/environment_map.h"
 #include "core/scene/gltf_loader.h"
 #include "core/scene/spectrum_input.h"
@@ -21,25 +21,12 @@ namespace prism {
 namespace {
 
 Rgb parse_rgb(const std::string& text, const char* what) {
-  Rgb rgb;
-  std::stringstream ss(text);
-  std::string cell;
-  int i = 0;
-  while (std::getline(ss, cell, ',')) {
-    if (i == 3) fail("{} '{}': expected three numbers R,G,B", what, text);
-    try {
-      size_t used = 0;
-      rgb[i] = std::stof(cell, &used);
-      if (used != cell.size()) throw std::invalid_argument(cell);
-    } catch (const std::exception&) {
-      fail("{} '{}': '{}' is not a number", what, text, cell);
-    }
-    if (!std::isfinite(rgb[i]) || rgb[i] < 0 || rgb[i] > kMaxEmission)
+  const std::vector<double> v = parse_numbers(text, what);
+  if (v.size() != 3) fail("{} '{}': expected three numbers R,G,B", what, text);
+  for (const double c : v)
+    if (c < 0 || c > kMaxEmission)
       fail("{} '{}': values must be finite, non-negative and at most {:g}", what, text, kMaxEmission);
-    ++i;
-  }
-  if (i != 3) fail("{} '{}': expected three numbers R,G,B", what, text);
-  return rgb;
+  return Rgb{float(v[0]), float(v[1]), float(v[2])};
 }
 
 uint64_t max_memory_bytes(const SceneArgs& args) {

@@ -1,9 +1,9 @@
 #include "core/render/spectral_bins.h"
 
 #include <algorithm>
-#include <sstream>
 
 #include "core/base/error.h"
+#include "core/base/number_list.h"
 #include "spectral/wavelengths.h"
 
 namespace prism {
@@ -26,17 +26,7 @@ SpectralBins SpectralBins::parse(const std::string& text) {
     fail("--spectral-bins '{}': expected a bin count or comma-separated edges in nm", text);
   }
   SpectralBins b;
-  std::stringstream ss(text);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) {
-    try {
-      size_t used = 0;
-      b.edges.push_back(std::stof(cell, &used));
-      if (used != cell.size()) throw std::invalid_argument(cell);
-    } catch (const std::exception&) {
-      fail("--spectral-bins '{}': '{}' is not a number", text, cell);
-    }
-  }
+  for (const double edge : parse_numbers(text, "--spectral-bins")) b.edges.push_back(float(edge));
   if (b.edges.size() < 2 || !std::is_sorted(b.edges.begin(), b.edges.end(), std::less_equal<float>()) ||
       b.edges.front() < kLambdaMin || b.edges.back() > kLambdaMax)
     fail("--spectral-bins '{}': edges must be at least two, strictly ascending, within {}–{} nm", text, kLambdaMin,
