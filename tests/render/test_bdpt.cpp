@@ -12,6 +12,7 @@
 #include "core/render/error_estimate.h"
 #include "core/scene/gltf_loader.h"
 #include "materials/catalogue.h"
+#include "tests/support/sanitizers.h"
 #include "tests/support/test_scenes.h"
 
 using namespace prism;
@@ -266,12 +267,12 @@ TEST_CASE("bdpt, vcm: a dispersive glass sphere under a uniform environment rend
 TEST_CASE("bdpt, vcm and the path tracer agree on the dispersive prism in mean and colour") {
   Scene scene = load_gltf(std::filesystem::path(PRISM_SOURCE_DIR) / "data/scenes/dispersion.gltf");
   const CameraDesc& camera = scene.cameras.at(0);
-  const auto path = test::render_rgb(scene, camera, 24, 24, 4096, 16, 1);
+  const auto path = test::render_rgb(scene, camera, 24, 24, test::sanitized_samples(4096), 16, 1);
   for (const IntegratorKind integrator : kBidirectional) {
     INFO((integrator == IntegratorKind::bdpt ? "bdpt" : "vcm"));
-    const auto img = test::render_rgb(scene, camera, 24, 24, 1024, 16, 2, 0, integrator);
+    const auto img = test::render_rgb(scene, camera, 24, 24, test::sanitized_samples(1024), 16, 2, 0, integrator);
     CHECK(img.stats.invalid_samples == 0);
-    check_agree(img, path, 0.03);
+    check_agree(img, path, 0.03 * test::kErrorScale);
   }
 }
 

@@ -6,6 +6,7 @@
 
 #include "core/base/frame.h"
 #include "core/base/rng.h"
+#include "tests/support/sanitizers.h"
 
 namespace prism::test {
 
@@ -36,6 +37,7 @@ double regularized_gamma_p(double a, double x) {
 Chi2Result chi2_test(const std::function<std::optional<Vec3f>(float, float, float)>& sample,
                      const std::function<double(const Vec3f&)>& pdf, int samples, int theta_bins, int phi_bins,
                      double significance, uint64_t seed) {
+  samples = sanitized_samples(samples);
   Rng rng(seed, 0);
   std::vector<Vec3f> directions;
   for (int i = 0; i < samples; ++i) {

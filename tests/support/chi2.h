@@ -19,7 +19,8 @@ struct Chi2Result {
 
 // sample(u1, u2, u3) returns a unit direction or nothing (a failed or excluded sample); pdf(w)
 // the density of the returned directions (it may integrate to less than 1). Expected counts
-// come from integrating pdf over each cell (composite Simpson).
+// come from integrating pdf over each cell (composite Simpson). Under the sanitizers it draws a
+// quarter of the samples (sanitizers.h).
 Chi2Result chi2_test(const std::function<std::optional<Vec3f>(float, float, float)>& sample,
                      const std::function<double(const Vec3f&)>& pdf, int samples = 200000, int theta_bins = 48,
                      int phi_bins = 32, double significance = 1e-3, uint64_t seed = 1);
