@@ -3,6 +3,8 @@
 // its standard error, and with --spectral-bins the spectral irradiance. --grid also writes
 // OUT.png, a false-colour map with isolux lines (isolux_map.h).
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -29,6 +31,8 @@ struct MeasureArgs {
 
 MeterPoint meter_point(const std::vector<double>& v, const std::string& what) {
   if (v.size() != 6) fail("{}: expected X,Y,Z,NX,NY,NZ (a position and a normal)", what);
+  for (double c : v)
+    if (!std::isfinite(float(c))) fail("{}: {} overflows single precision", what, c);
   const Vec3f n{float(v[3]), float(v[4]), float(v[5])};
   if (!(length(n) > 0)) fail("{}: the normal is zero", what);
   return {Vec3f(float(v[0]), float(v[1]), float(v[2])), normalize(n)};
@@ -65,31 +69,41 @@ Grid rectangle_grid(Vec3f a, Vec3f b, int nx, int ny, const std::string& what) {
   return g;
 }
 
-// --grid MESH:SPACING — the top face (y up) of the bounding box of a glTF mesh (by its name) in the
-// posed scene, points SPACING apart; or X0,Y0,Z0,X1,Y1,Z1,NX,NY — a rectangle between two corners that agree in one
-// coordinate, NX × NY points, normal along that axis.
+// --grid NAME:SPACING — the top face (y up) of the bounding box of the glTF nodes of that name
+// (else the meshes of that name) in the posed scene, points SPACING apart; or X0,Y0,Z0,X1,Y1,Z1,NX,NY
+// — a rectangle between two corners that agree in one coordinate, NX × NY points, normal along that
+// axis.
 Grid grid_points(const std::string& text, const Scene& scene) {
   const std::string what = "--grid " + text;
   const size_t colon = text.rfind(':');
   if (colon != std::string::npos) {
     const std::string name = text.substr(0, colon);
     const std::vector<double> spacing = parse_numbers(text.substr(colon + 1), what);
-    if (spacing.size() != 1 || !(spacing[0] > 0)) fail("{}: expected MESH:SPACING, a positive spacing", what);
+    if (spacing.size() != 1 || !(spacing[0] > 0)) fail("{}: expected NAME:SPACING, a positive spacing", what);
     Bounds3f box;
-    for (const Instance& inst : scene.instances)
-      if (scene.meshes[inst.mesh].name == name)
-        for (const Vec3f& p : scene.meshes[inst.mesh].positions) box.extend(Vec3f(inst.to_world.point(Vec3d(p))));
-    if (box.empty()) fail("{}: no mesh named '{}' in the scene", what, name);
+    const auto extend = [&](const Instance& inst) {
+      for (const Vec3f& p : scene.meshes[inst.mesh].positions) box.extend(Vec3f(inst.to_world.point(Vec3d(p))));
+    };
+    for (const NamedInstances& node : scene.named_nodes)
+      if (node.node == name)
+        for (uint32_t i = node.first; i < node.end; ++i) extend(scene.instances[i]);
+    if (box.empty())
+      for (const Instance& inst : scene.instances)
+        if (scene.meshes[inst.mesh].name == name) extend(inst);
+    if (box.empty()) fail("{}: no node or mesh named '{}' in the scene", what, name);
     const float top = box.hi.y + 1e-4f * std::max(1.f, std::abs(box.hi.y));
-    const int nx = std::max(1, int(std::round((box.hi.x - box.lo.x) / spacing[0]))),
-              ny = std::max(1, int(std::round((box.hi.z - box.lo.z) / spacing[0])));
+    // Counts beyond the grid's limit stay beyond it (and get its message) without overflowing an int.
+    const auto count = [&](float extent) { return int(std::clamp(std::round(extent / spacing[0]), 1.0, 1e7)); };
+    const int nx = count(box.hi.x - box.lo.x), ny = count(box.hi.z - box.lo.z);
     return rectangle_grid({box.lo.x, top, box.lo.z}, {box.hi.x, top, box.hi.z}, nx, ny, what);
   }
   const std::vector<double> v = parse_numbers(text, what);
   if (v.size() != 8 || v[6] != std::floor(v[6]) || v[7] != std::floor(v[7]))
-    fail("{}: expected MESH:SPACING or X0,Y0,Z0,X1,Y1,Z1,NX,NY", what);
+    fail("{}: expected NAME:SPACING or X0,Y0,Z0,X1,Y1,Z1,NX,NY", what);
+  for (int c = 0; c < 6; ++c)
+    if (!std::isfinite(float(v[c]))) fail("{}: {} overflows single precision", what, v[c]);
   return rectangle_grid(Vec3f(float(v[0]), float(v[1]), float(v[2])), Vec3f(float(v[3]), float(v[4]), float(v[5])),
-                        int(v[6]), int(v[7]), what);
+                        int(std::clamp(v[6], 0.0, 1e7)), int(std::clamp(v[7], 0.0, 1e7)), what);
 }
 
 // --points FILE: rows x,y,z,nx,ny,nz (a header line and '#' comments allowed).
@@ -172,10 +186,10 @@ void add_measure_command(CLI::App& app) {
   cmd->add_option("-o,--output", args->output, "Output CSV: x,y,z,nx,ny,nz,illuminance_lux,std_error_lux")->required();
   cmd->add_option("--point", args->points, "A meter X,Y,Z,NX,NY,NZ: position and the normal of its surface (repeat)");
   cmd->add_option("--points", args->points_file, "A CSV of meters, one x,y,z,nx,ny,nz per line");
-  cmd->add_option(
-      "--grid", args->grid,
-      "A grid of meters: MESH:SPACING (the top of a glTF mesh's bounding box, y up) or X0,Y0,Z0,X1,Y1,Z1,NX,NY "
-      "(a rectangle whose corners agree in one coordinate); also writes OUTPUT.png, an isolux map");
+  cmd->add_option("--grid", args->grid,
+                  "A grid of meters: NAME:SPACING (the top of the bounding box of a glTF node or mesh, y up) or "
+                  "X0,Y0,Z0,X1,Y1,Z1,NX,NY "
+                  "(a rectangle whose corners agree in one coordinate); also writes OUTPUT.png, an isolux map");
   cmd->add_option("--spp", args->options.spp, "Samples per point (with --rel-error, the most a point takes)")
       ->default_val(256)
       ->check(positive_count());

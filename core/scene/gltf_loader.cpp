@@ -125,6 +125,7 @@ bool GltfLoader::pose(double time) {
 // The instances, cameras, lights and deformed meshes of the current pose.
 void GltfLoader::build() {
   scene_.instances.clear();
+  scene_.named_nodes.clear();
   scene_.cameras.clear();
   scene_.point_lights.clear();
   scene_.spot_lights.clear();

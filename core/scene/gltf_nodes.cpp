@@ -76,6 +76,7 @@ void GltfLoader::traverse_scene() {
     const std::string context = fmt::format("{}: node {} '{}'", file_, next.node, node.name);
     const Transform world = next.parent * pose_[next.node].local();
     const bool gpu_instanced = node.extensions.count("EXT_mesh_gpu_instancing") > 0;
+    const auto first_instance = uint32_t(scene_.instances.size());
     if (node.mesh >= 0 && deforms(node)) {
       if (gpu_instanced) warn_once("EXT_mesh_gpu_instancing on a morphed or skinned mesh: drawn once");
       add_deformed(next.node, world);
@@ -90,6 +91,8 @@ void GltfLoader::traverse_scene() {
         check_world_bounds(m, world, context);
         scene_.instances.push_back({m, world});
       }
+    if (!node.name.empty() && scene_.instances.size() > first_instance)
+      scene_.named_nodes.push_back({node.name, first_instance, uint32_t(scene_.instances.size())});
     if (node.camera >= 0) {
       check_index(node.camera, model_.cameras, "camera", context);
       add_camera(model_.cameras[node.camera], world, context);

@@ -101,11 +101,19 @@ struct EnvironmentMapDesc {
   std::optional<DenselySampledSpectrum> white;  // the spectrum of RGB (1, 1, 1), luminance 1; none: D65
 };
 
+// The instances one named glTF node placed (its own mesh's, not its children's): how a tool finds
+// an object by the name a modelling program gave it.
+struct NamedInstances {
+  std::string node;
+  uint32_t first = 0, end = 0;  // Scene::instances[first, end)
+};
+
 struct Scene {
   std::filesystem::path source;
   uint64_t source_hash = 0;  // FNV-1a of the source file and every file its URIs name (gltf_file.h)
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;
+  std::vector<NamedInstances> named_nodes;  // nodes with a name and a mesh, in traversal order
   std::vector<Material> materials;
   std::vector<PointLight> point_lights;
   std::vector<SpotLight> spot_lights;
