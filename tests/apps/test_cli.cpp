@@ -1,13 +1,18 @@
 // The prism command line: subcommands' output formats and errors.
 
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfStringAttribute.h>
 #include <fmt/format.h>
 
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
 #include "core/render/image_output.h"
+#include "tests/support/gltf_builder.h"
 #include "tests/support/test_scenes.h"
 
 using namespace prism;
@@ -167,4 +172,164 @@ TEST_CASE("prism compare: an image's error against a reference, linear and as di
   std::string err;
   CHECK(test::run_prism("compare " + a + " " + constant("wide.exr", 0.25f, 8), &err) == 1);
   CHECK(err.find("only images of one size compare") != std::string::npos);
+}
+
+// The rows of a `prism measure` CSV: x, y, z, nx, ny, nz, illuminance, standard error.
+static std::vector<std::array<double, 8>> read_readings(const std::filesystem::path& csv) {
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  CHECK(line == "x,y,z,nx,ny,nz,illuminance_lux,std_error_lux");
+  std::vector<std::array<double, 8>> rows;
+  while (std::getline(in, line)) {
+    std::array<double, 8> row{};
+    char comma;
+    std::istringstream cells(line);
+    cells >> row[0];
+    for (int c = 1; c < 8; ++c) cells >> comma >> row[c];
+    CHECK(cells);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST_CASE("prism measure: lux at given points and on a named node's grid, with its isolux map") {
+  // A 2 m square desk top at y = 0.5 (node "Desk", mesh "desk_top") under a 4 cd point light at
+  // y = 2.5: a meter facing up at (x, y, z) reads E = I h / d³, h = 2.5 − y, to within the noise of
+  // the sampled wavelengths (the reading's own standard error, which must be small).
+  const auto dir = test::temp_dir("measure_cli");
+  test::GltfBuilder b;
+  const int pos = b.floats({-1, 0, -1, -1, 0, 1, 1, 0, 1, 1, 0, -1}, "VEC3");
+  const int idx = b.u16({0, 1, 2, 0, 2, 3});
+  std::ofstream(dir / "desk.gltf") << b.json(fmt::format(R"(
+  "extensionsUsed": ["KHR_lights_punctual"],
+  "extensions": {{"KHR_lights_punctual": {{"lights": [{{"type": "point", "intensity": 4}}]}}}},
+  "scenes": [{{"nodes": [0, 1]}}],
+  "nodes": [{{"name": "Desk", "mesh": 0, "translation": [0, 0.5, 0]}},
+            {{"name": "Lamp", "translation": [0, 2.5, 0], "extensions": {{"KHR_lights_punctual": {{"light": 0}}}}}}],
+  "meshes": [{{"name": "desk_top", "primitives": [{{"attributes": {{"POSITION": {}}}, "indices": {}}}]}}])",
+                                                         pos, idx));
+  const std::string measure = "measure \"" + (dir / "desk.gltf").string() + "\" --spp 256 --quiet ";
+  const auto check_reading = [](const std::array<double, 8>& r) {
+    const double h = 2.5 - r[1], d = std::sqrt(r[0] * r[0] + h * h + r[2] * r[2]), expected = 4 * h / (d * d * d);
+    INFO("meter at " << r[0] << "," << r[1] << "," << r[2] << ": " << r[6] << " +- " << r[7] << " lux");
+    CHECK(r[7] < 0.002 * expected);
+    CHECK(std::abs(r[6] - expected) < 4 * r[7]);
+  };
+
+  const auto points = dir / "points.csv";
+  REQUIRE(test::run_prism(measure + "--point 0,1,0,0,1,0 --point 0.5,0.5,0.5,0,1,0 -o \"" + points.string() + "\"") ==
+          0);
+  const auto at_points = read_readings(points);
+  REQUIRE(at_points.size() == 2);
+  CHECK(at_points[0][6] == Approx(4 / 2.25).epsilon(0.005));
+  for (const auto& r : at_points) check_reading(r);
+
+  // By the node's name: 4 × 4 meters 0.5 m apart on the desk's top, and a map of them.
+  const auto grid = dir / "grid.csv";
+  REQUIRE(test::run_prism(measure + "--grid Desk:0.5 -o \"" + grid.string() + "\"") == 0);
+  const auto on_desk = read_readings(grid);
+  REQUIRE(on_desk.size() == 16);
+  for (const auto& r : on_desk) {
+    CHECK(r[1] == Approx(0.5).margin(1e-3));
+    CHECK(r[4] == 1);
+    CHECK(std::abs(std::abs(r[0]) - 0.5) == Approx(0.25));
+    check_reading(r);
+  }
+  std::ifstream png(dir / "grid.png", std::ios::binary);
+  char signature[8] = {};
+  png.read(signature, 8);
+  CHECK(std::string(signature + 1, 3) == "PNG");
+
+  // By the mesh's name, the same meters; the same readings at any thread count.
+  const auto by_mesh = dir / "by_mesh.csv";
+  REQUIRE(test::run_prism(measure + "--threads 1 --grid desk_top:0.5 -o \"" + by_mesh.string() + "\"") == 0);
+  const auto slurp = [](const std::filesystem::path& file) {
+    std::ostringstream text;
+    text << std::ifstream(file).rdbuf();
+    return text.str();
+  };
+  CHECK(slurp(by_mesh) == slurp(grid));
+
+  // Bad points stop with one message naming what is wrong, and write nothing.
+  const auto refused = [&](const std::string& options, const std::string& named) {
+    const auto out = dir / "refused.csv";
+    std::string err;
+    CHECK(test::run_prism(measure + options + " -o \"" + out.string() + "\"", &err) == 1);
+    INFO(err);
+    CHECK(err.find(named) != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(out));
+    CHECK_FALSE(std::filesystem::exists(dir / "refused.png"));
+  };
+  refused("--grid Table:0.5", "Table");
+  refused("--grid Desk:0", "Desk:0");
+  refused("--grid Desk:1e-30", "4000000");
+  refused("--grid 0,0,0,1,0,1,1e30,2", "4000000");
+  refused("--point 0,1,0,0,0,0", "0,1,0,0,0,0");
+  refused("--point 0,1,0", "0,1,0");
+  refused("--point 1e39,1,0,0,1,0", "1e39");
+  refused("--point 0,1,0,0,1,0 --grid Desk:0.5", "one way");
+}
+
+TEST_CASE("prism fresnel --nk-file reads refractiveindex.info's CSV as the same n, k given by --nk") {
+  const auto dir = test::temp_dir("fresnel_nk_file");
+  std::ofstream(dir / "flat.csv") << "wl,n\n0.3,0.27\n0.9,0.27\nwl,k\n0.3,3.41\n0.9,3.41\n";
+  const std::string query = "fresnel --wavelengths 400,550,700 --angles 0,45,80 --format csv ";
+  std::string from_file, from_pair, err;
+  REQUIRE(test::run_prism(query + "--nk-file \"" + (dir / "flat.csv").string() + "\"", &err, &from_file) == 0);
+  REQUIRE(test::run_prism(query + "--nk 0.27,3.41", &err, &from_pair) == 0);
+  // The same rows but for the label in the first column.
+  const auto values = [](const std::string& csv) {
+    std::vector<std::string> rows;
+    std::istringstream in(csv);
+    for (std::string line; std::getline(in, line);) rows.push_back(line.substr(line.find(',')));
+    return rows;
+  };
+  CHECK(values(from_file).size() == 1 + 3 * 3);
+  CHECK(values(from_file) == values(from_pair));
+  std::ofstream(dir / "junk.csv") << "wl,n\n0.5,oops\n";
+  CHECK(test::run_prism(query + "--nk-file \"" + (dir / "junk.csv").string() + "\"", &err) == 1);
+  CHECK(err.find("junk.csv") != std::string::npos);
+}
+
+TEST_CASE(
+    "prism render --env-spectrum and --white-balance: a white surface under illuminant A renders orange, "
+    "balanced for A neutral") {
+  const auto dir = test::temp_dir("white_balance_cli");
+  const auto scene = test::write_quad_scene(
+      dir, "white", R"({"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0}})");
+  const auto render = [&](const std::string& options) {
+    const auto out = dir / "out.exr";
+    std::string err;
+    const int code = test::run_prism("render \"" + scene.string() + "\" --width 8 --height 8 --spp 64 --quiet " +
+                                         "--env 1,1,1 --env-spectrum A -o \"" + out.string() + "\" " + options,
+                                     &err);
+    INFO(options << ": " << err);
+    REQUIRE(code == 0);
+    const RgbImage image = read_exr(out);
+    std::array<double, 3> mean{};
+    for (size_t i = 0; i < image.rgb.size(); ++i) mean[i % 3] += image.rgb[i] / double(image.rgb.size() / 3);
+    Imf::InputFile in(out.c_str());
+    const auto* balance = in.header().findTypedAttribute<Imf::StringAttribute>("prism.whiteBalance");
+    return std::pair{mean, balance ? balance->value() : std::string("(none)")};
+  };
+  // Unbalanced, A's white in linear Rec.709 is about (1.85, 0.83, 0.23) at luminance 1.
+  const auto [orange, none] = render("");
+  CHECK(orange[0] / orange[2] > 6);
+  CHECK(none == "(none)");
+  for (const char* white : {"A", "2856"}) {
+    const auto [neutral, recorded] = render(std::string("--white-balance ") + white);
+    CHECK(neutral[0] / neutral[1] == Approx(1).margin(0.02));
+    CHECK(neutral[2] / neutral[1] == Approx(1).margin(0.02));
+    CHECK(recorded.find(white) != std::string::npos);
+  }
+  // Unknown spectra and whites stop before rendering, naming them.
+  for (const char* bad : {"--env-spectrum Unobtainium", "--white-balance Unobtainium"}) {
+    std::string err;
+    CHECK(test::run_prism("render \"" + scene.string() + "\" --width 8 --height 8 --spp 1 --env 1,1,1 -o \"" +
+                              (dir / "bad.exr").string() + "\" " + bad,
+                          &err) == 1);
+    CHECK(err.find("Unobtainium") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(dir / "bad.exr"));
+  }
 }
