@@ -188,8 +188,8 @@ void add_measure_command(CLI::App& app) {
   cmd->add_option("--points", args->points_file, "A CSV of meters, one x,y,z,nx,ny,nz per line");
   cmd->add_option("--grid", args->grid,
                   "A grid of meters: NAME:SPACING (the top of the bounding box of a glTF node or mesh, y up) or "
-                  "X0,Y0,Z0,X1,Y1,Z1,NX,NY "
-                  "(a rectangle whose corners agree in one coordinate); also writes OUTPUT.png, an isolux map");
+                  "X0,Y0,Z0,X1,Y1,Z1,NX,NY (a rectangle whose corners agree in one coordinate); also writes "
+                  "OUTPUT.png, an isolux map");
   cmd->add_option("--spp", args->options.spp, "Samples per point (with --rel-error, the most a point takes)")
       ->default_val(256)
       ->check(positive_count());

@@ -285,8 +285,9 @@ void run(const RenderArgs& args) {
   if (args.quiet) log::set_level(log::Level::warn);
   if (args.verbose) log::set_level(log::Level::verbose);
   interrupt::install();
-  ColorPipeline::standard().canonical_name(args.colorspace);  // a bad name fails before any work
-  white_balance_option(args.white_balance);                   // so does a bad white balance
+  ColorPipeline::standard().canonical_name(args.colorspace);                 // a bad name fails before any work
+  white_balance_option(args.white_balance);                                  // so does a bad white balance
+  if (!args.spectral_bins.empty()) SpectralBins::parse(args.spectral_bins);  // and bad spectral bins
   if (args.frames.empty()) {
     check_output(args.output, "-o");
     if (!args.preview.empty()) check_output(args.preview, "--preview");

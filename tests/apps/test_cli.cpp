@@ -333,3 +333,19 @@ TEST_CASE(
     CHECK_FALSE(std::filesystem::exists(dir / "bad.exr"));
   }
 }
+
+TEST_CASE("prism render refuses bad output options before it reads the scene") {
+  // The scene does not exist: each message must be about the option, found first.
+  const std::string render = "render \"" + (test::temp_dir("early_refusals") / "absent.gltf").string() + "\" -o x.exr ";
+  for (const auto& [option, named] : std::vector<std::pair<std::string, std::string>>{
+           {"--colorspace Bogus", "Bogus"},
+           {"--white-balance Bogus", "Bogus"},
+           {"--spectral-bins 500,400", "500,400"},
+       }) {
+    std::string err;
+    CHECK(test::run_prism(render + option, &err) == 1);
+    INFO(option << ": " << err);
+    CHECK(err.find(named) != std::string::npos);
+    CHECK(err.find("absent.gltf") == std::string::npos);
+  }
+}
