@@ -4,12 +4,13 @@
 # gathers those into docs/showcases/README.md. The error is measured, not estimated: each scene is
 # rendered a second time with another seed, and `prism compare --independent` gives either image's
 # relative RMSE as displayed (clipped and sRGB-encoded, the noise a viewer sees) and in linear
-# values. The sample counts were chosen to bring the displayed error to about 2%.
+# values. The sample counts were chosen to bring the displayed error to about 2% (the diamond's
+# sparkles settle slowest: about 6%).
 #
 #   tools/render_showcases.sh [--build DIR] [NAME ...]   (default: build/, every picture)
 #
 # Run it on an otherwise idle machine: the times it writes are wall times. All the pictures take
-# about an hour on 2 cores. The EXR images are kept in a temporary folder only.
+# about 40 minutes on 2 cores. The EXR images are kept in a temporary folder only.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$root/build
@@ -28,14 +29,14 @@ cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
 # The pictures: NAME | caption | scene | options (the integrator is auto's unless named).
 list() {
   cat <<'EOF'
-default|The default scene: a Cornell box with copper and gold spheres and a dispersive flint prism|cornell|--width 384 --height 384 --spp 576
+default|The default scene: a Cornell box with copper and gold spheres and a dispersive flint prism|cornell|--width 320 --height 320 --spp 896
 brushed|Brushed aluminium: a lathe-turned disk and a sphere brushed along its latitudes|brushed|--width 480 --spp 384
 carpaint|A red metallic paint without (left) and under (right) a clear coat|carpaint|--width 480 --spp 512
-iridescence|Soap bubbles 250 to 850 nm thick, and an oil film on water|iridescence|--width 480 --spp 160
-glass_of_water|A glass of water throwing its caustic on the table|glass_of_water|--width 384 --spp 192
-prism_rainbow|Newton's experiment: white light through a slit and a flint prism|prism_rainbow|--width 384 --spp 384
-dispersion|A dispersive prism and the spectrum it casts|dispersion|--width 384 --spp 448
-diamond|A brilliant-cut diamond (the path tracer: its error is the sparkles)|diamond|--width 384 --spp 896 --integrator path
+iridescence|Soap bubbles 250 to 850 nm thick, and an oil film on water|iridescence|--width 480 --spp 224
+glass_of_water|A glass of water throwing its caustic on the table|glass_of_water|--width 384 --spp 288
+prism_rainbow|Newton's experiment: white light through a slit and a flint prism|prism_rainbow|--width 384 --spp 512
+dispersion|A dispersive prism and the spectrum it casts|dispersion|--width 384 --spp 800
+diamond|A brilliant-cut diamond on a dark floor under one small light: its fire|diamond|--width 384 --spp 1536
 metamerism_d65|Two paints under D65: they match|metamerism|--width 320 --spp 128 --env 1,1,1 --env-spectrum D65 --white-balance D65
 metamerism_a|The same two paints under illuminant A: they part|metamerism|--width 320 --spp 128 --env 1,1,1 --env-spectrum A --white-balance A
 metamerism_f11|The same two paints under F11: they part|metamerism|--width 320 --spp 128 --env 1,1,1 --env-spectrum F11 --white-balance F11
