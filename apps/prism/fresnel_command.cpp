@@ -35,9 +35,9 @@ struct Reflector {
 };
 
 std::vector<float> parse_list(const std::string& text, const char* option) {
-  const std::vector<double> values = parse_numbers(text, option);
+  std::vector<float> values = parse_floats(text, option);
   if (values.empty()) fail("{} needs at least one number", option);
-  return {values.begin(), values.end()};
+  return values;
 }
 
 std::vector<Reflector> reflectors(const FresnelArgs& args) {

@@ -29,13 +29,11 @@ struct MeasureArgs {
   bool quiet = false;
 };
 
-MeterPoint meter_point(const std::vector<double>& v, const std::string& what) {
+MeterPoint meter_point(const std::vector<float>& v, const std::string& what) {
   if (v.size() != 6) fail("{}: expected X,Y,Z,NX,NY,NZ (a position and a normal)", what);
-  for (double c : v)
-    if (!std::isfinite(float(c))) fail("{}: {} overflows single precision", what, c);
-  const Vec3f n{float(v[3]), float(v[4]), float(v[5])};
+  const Vec3f n{v[3], v[4], v[5]};
   if (!(length(n) > 0)) fail("{}: the normal is zero", what);
-  return {Vec3f(float(v[0]), float(v[1]), float(v[2])), normalize(n)};
+  return {Vec3f(v[0], v[1], v[2]), normalize(n)};
 }
 
 // A grid of nx × ny points at the cells' centres of a rectangle: row 0 at the first corner's far
@@ -97,13 +95,11 @@ Grid grid_points(const std::string& text, const Scene& scene) {
     const int nx = count(box.hi.x - box.lo.x), ny = count(box.hi.z - box.lo.z);
     return rectangle_grid({box.lo.x, top, box.lo.z}, {box.hi.x, top, box.hi.z}, nx, ny, what);
   }
-  const std::vector<double> v = parse_numbers(text, what);
+  const std::vector<float> v = parse_floats(text, what);
   if (v.size() != 8 || v[6] != std::floor(v[6]) || v[7] != std::floor(v[7]))
     fail("{}: expected NAME:SPACING or X0,Y0,Z0,X1,Y1,Z1,NX,NY", what);
-  for (int c = 0; c < 6; ++c)
-    if (!std::isfinite(float(v[c]))) fail("{}: {} overflows single precision", what, v[c]);
-  return rectangle_grid(Vec3f(float(v[0]), float(v[1]), float(v[2])), Vec3f(float(v[3]), float(v[4]), float(v[5])),
-                        int(std::clamp(v[6], 0.0, 1e7)), int(std::clamp(v[7], 0.0, 1e7)), what);
+  return rectangle_grid(Vec3f(v[0], v[1], v[2]), Vec3f(v[3], v[4], v[5]), int(std::clamp(v[6], 0.f, 1e7f)),
+                        int(std::clamp(v[7], 0.f, 1e7f)), what);
 }
 
 // --points FILE: rows x,y,z,nx,ny,nz (a header line and '#' comments allowed).
@@ -119,7 +115,7 @@ std::vector<MeterPoint> points_file(const std::string& file) {
         std::isalpha(static_cast<unsigned char>(line[line.find_first_not_of(" \t")])))
       continue;  // a header
     out.push_back(
-        meter_point(parse_numbers(line, fmt::format("{} line {}", file, row)), fmt::format("{} line {}", file, row)));
+        meter_point(parse_floats(line, fmt::format("{} line {}", file, row)), fmt::format("{} line {}", file, row)));
   }
   if (out.empty()) fail("--points {}: no points", file);
   return out;
@@ -142,7 +138,7 @@ void run(const MeasureArgs& args) {
     points = points_file(args.points_file);
   } else {
     for (const std::string& p : args.points)
-      points.push_back(meter_point(parse_numbers(p, "--point " + p), "--point " + p));
+      points.push_back(meter_point(parse_floats(p, "--point " + p), "--point " + p));
   }
   log::info("measuring illuminance at {} points{}", points.size(),
             options.rel_error > 0

@@ -27,4 +27,14 @@ inline std::vector<double> parse_numbers(const std::string& text, const std::str
   return out;
 }
 
+// The same, each number also finite in single precision (coordinates, wavelengths, indices).
+inline std::vector<float> parse_floats(const std::string& text, const std::string& what) {
+  std::vector<float> out;
+  for (const double v : parse_numbers(text, what)) {
+    if (!std::isfinite(float(v))) fail("{} '{}': {:g} overflows single precision", what, text, v);
+    out.push_back(float(v));
+  }
+  return out;
+}
+
 }  // namespace prism

@@ -26,7 +26,7 @@ SpectralBins SpectralBins::parse(const std::string& text) {
     fail("--spectral-bins '{}': expected a bin count or comma-separated edges in nm", text);
   }
   SpectralBins b;
-  for (const double edge : parse_numbers(text, "--spectral-bins")) b.edges.push_back(float(edge));
+  b.edges = parse_floats(text, "--spectral-bins");
   if (b.edges.size() < 2 || !std::is_sorted(b.edges.begin(), b.edges.end(), std::less_equal<float>()) ||
       b.edges.front() < kLambdaMin || b.edges.back() > kLambdaMax)
     fail("--spectral-bins '{}': edges must be at least two, strictly ascending, within {}–{} nm", text, kLambdaMin,
