@@ -229,6 +229,7 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
       {"prism.integrator", std::string(integrator(options.integrator).name)},
       {"prism.sampler", std::string(sampler_name(options.sampler))},
       {"prism.lightSampling", std::string(options.path.next_event ? "mis" : "bsdf")},
+      {"prism.lightSampler", std::string(light_sampler_name(args.scene.light_sampler))},
       {"prism.spp", int(counts.max)},
       {"prism.sppMin", int(counts.min)},
       {"prism.sppMean", counts.mean},

@@ -126,6 +126,21 @@ void add_scene_options(CLI::App* cmd, SceneArgs& args) {
   cmd->add_flag("!--no-energy-compensation", args.energy_compensation,
                 "Leave out the light scattered more than once between microfacets (as single-scattering "
                 "renderers do)");
+  std::map<std::string, LightSamplerKind> samplers;
+  std::string help = "How next-event estimation chooses a light for a point";
+  for (const LightSamplerInfo& l : kLightSamplers) {
+    samplers.emplace(std::string(l.name), l.kind);
+    help += fmt::format("; {}: {}", l.name, l.description);
+  }
+  cmd->add_option("--light-sampler", args.light_sampler, help)
+      ->transform(CLI::CheckedTransformer(samplers))
+      ->default_str(std::string(light_sampler_name(kDefaultLightSampler)));
+}
+
+std::string_view light_sampler_name(LightSamplerKind kind) {
+  for (const LightSamplerInfo& l : kLightSamplers)
+    if (l.kind == kind) return l.name;
+  return "?";
 }
 
 void add_gltf_options(CLI::App* cmd, GltfOptions& options) {
@@ -197,10 +212,13 @@ void build_world(PreparedScene& p, const SceneArgs& args) {
   const bool first = !p.world;
   const auto t0 = std::chrono::steady_clock::now();
   p.world.reset();
-  p.world = std::make_unique<World>(p.gltf->scene());
+  p.world = std::make_unique<World>(p.gltf->scene(), AccelOptions{}, args.light_sampler);
   log::info("scene features: {}", p.world->features().to_string());
   log::info("built the BVH over {} triangles in {:.0f} ms ({:.1f} MB)", p.world->accel().triangle_count(),
             1e3 * seconds_since(t0), p.world->accel().memory_bytes() / 1e6);
+  if (const LightTree* tree = p.world->light_sampler().tree())
+    log::info("light tree: {} nodes over {} lights ({:.1f} MB)", tree->node_count(), p.world->lights().size(),
+              tree->memory_bytes() / 1e6);
   if (first && p.world->lights().empty())
     log::warn("{}: the scene has no lights (the image will be black); light it with --env R,G,B", args.scene);
 }

@@ -18,6 +18,7 @@ struct SceneArgs {
   GltfOptions gltf;
   double max_memory_gb = 0;         // 0: the machine's physical memory
   bool energy_compensation = true;  // off: --no-energy-compensation (single-scattering microfacets)
+  LightSamplerKind light_sampler = kDefaultLightSampler;  // --light-sampler
 };
 
 // Bytes Prism budgets per pixel of the image and per mesh instance (scene, BVH, world), to refuse
@@ -32,11 +33,14 @@ const CLI::Validator& positive_count();
 const CLI::Validator& seed_value();
 
 // The scene file (positional), --env / --env-map / --env-rotate / --env-scale / --env-spectrum, --width,
-// --height, --camera, --no-energy-compensation, and the glTF choices of add_gltf_options.
+// --height, --camera, --no-energy-compensation, --light-sampler, and the glTF choices of add_gltf_options.
 void add_scene_options(CLI::App* cmd, SceneArgs& args);
 
 // --scene, --variant, --time, --animation and --allow-external-paths.
 void add_gltf_options(CLI::App* cmd, GltfOptions& options);
+
+// The name of a light sampler (kLightSamplers).
+std::string_view light_sampler_name(LightSamplerKind kind);
 
 // --spp, --seed, --threads, --max-depth, --integrator (its name, or "auto": resolve_integrator), --merge-radius,
 // --wavelengths, --sampler, --light-sampling.

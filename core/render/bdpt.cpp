@@ -36,13 +36,15 @@ MediumStack segment_media(MediumStack media, const SurfaceInteraction& si, const
 
 // The light subpath: one light chosen by power, an emission from it, and a random walk with the
 // adjoint BSDF; its non-specular vertices are kept for connections.
+// Light sampling from a point may choose lights otherwise (a light tree): the density of the
+// strategy that samples the light from the first vertex is completed there, when that vertex is known.
 template <int N>
 void trace_light_path(const BdptScene& scene, SampledWavelengths<N>& lambda, Sampler& sampler,
                       const PathOptions& options, const MisFactors& factors, RayCounters& counters,
                       std::vector<LightVertex<N>>& vertices) {
   vertices.clear();
   const World& world = scene.world;
-  const PowerLightSampler& lights = world.light_sampler();
+  const PowerLightSampler& lights = world.light_sampler().by_power();
   if (lights.empty()) return;
   const int block = options.max_depth + 1;  // the sampler's bounce blocks after the camera path's
   sampler.start_bounce(block);
@@ -73,6 +75,7 @@ void trace_light_path(const BdptScene& scene, SampledWavelengths<N>& lambda, Sam
     if (!si) break;
     if (scene.media) beta *= media.transmittance(si->t, lambda);
     m.arrive(si->t, abs_dot(si->n, si->wo), length > 1 || finite);
+    if (length == 1) m.vcm *= mis(world.light_sampler().pmf(LightSampleContext{si->p, si->p_error, si->n}, index) / pick);
     const Material& material = *si->material;
     const bool entering = si->front_face();
     const Dielectric* front = scene.media ? media.front_dielectric(material, entering) : nullptr;
@@ -120,13 +123,14 @@ SampledSpectrum<N> connect_light(const BdptScene& scene, const SurfaceInteractio
                                  RayCounters& counters) {
   const float u_light = sampler.get_1d();
   const Vec2f u = sampler.get_2d();
-  const PowerLightSampler& lights = scene.world.light_sampler();
-  if (lights.empty()) return SampledSpectrum<N>(0.f);
-  const uint32_t index = lights.sample(u_light);
-  const float pick = lights.pmf(index);
-  const Light& light = scene.world.lights()[index];
-  const auto s = sample_li(light, LightSampleContext{si.p, si.p_error, si.n}, u, lambda);
-  if (!s || s->L.is_zero() || !(s->pdf > 0.f) || pick == 0.f) return SampledSpectrum<N>(0.f);
+  const LightSampler& lights = scene.world.light_sampler();
+  const LightSampleContext ctx{si.p, si.p_error, si.n};
+  const auto chosen = lights.sample(ctx, u_light);
+  if (!chosen || chosen->pmf == 0.f) return SampledSpectrum<N>(0.f);
+  const float pick = chosen->pmf, emission_pick = lights.by_power().pmf(chosen->light);
+  const Light& light = scene.world.lights()[chosen->light];
+  const auto s = sample_li(light, ctx, u, lambda);
+  if (!s || s->L.is_zero() || !(s->pdf > 0.f)) return SampledSpectrum<N>(0.f);
   const Vec3f wi = frame.to_local(s->wi);
   if (wrong_side(si, s->wi, wi.z * wo.z < 0)) return SampledSpectrum<N>(0.f);
   const BsdfEval<N> e = bsdf_eval(bsdf, wo, wi);
@@ -147,7 +151,7 @@ SampledSpectrum<N> connect_light(const BdptScene& scene, const SurfaceInteractio
   const float emission_pdf = pdf_le(light, -s->wi, scene.disk).product();
   const float bsdf_dir = is_delta(light) ? 0.f : e.pdf;
   const float w_light = mis(bsdf_dir / (pick * direct_pdf));
-  const float w_camera = mis(emission_pdf * abs_dot(si.n, s->wi) / (direct_pdf * cos_light)) *
+  const float w_camera = mis(emission_pick * emission_pdf * abs_dot(si.n, s->wi) / (pick * direct_pdf * cos_light)) *
                          m.connection(bsdf_pdf(bsdf, wi, wo), factors);
   ++counters.shadow;
   if (scene.world.occluded(s->shadow_ray)) return SampledSpectrum<N>(0.f);
@@ -232,7 +236,12 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, const SampledW
   for (const LightVertex<N>& v : light) splat_to_camera(scene, v, factors, lambda, splats, counters, invalid);
 
   const World& world = scene.world;
-  const PowerLightSampler& lights = world.light_sampler();
+  const LightSampler& lights = world.light_sampler();
+  LightSampleContext prev{};  // the camera vertex before this one, as it chose a light
+  // The densities of choosing `light` from the previous vertex, and for a light path.
+  const auto picks = [&](int depth, uint32_t light) {
+    return std::pair(depth > 0 ? lights.pmf(prev, light) : 0.f, lights.by_power().pmf(light));
+  };
   // Contributions valid for all lanes, and those only the hero wavelength could make: a camera
   // vertex after a dispersive interface, or a light vertex after one (or a photon).
   SampledSpectrum<N> L(0.f), hero(0.f), beta(1.f);
@@ -253,8 +262,9 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, const SampledW
     if (scene.media) beta *= media.transmittance(si ? si->t : kInfinity, camera_lambda);
     if (!si) {
       if (const Light* env = world.environment()) {
-        const float pick = lights.pmf(uint32_t(world.environment_light())), pdf = environment_pdf(*env, ray.d);
-        add_emitted(depth, environment_Le(*env, ray.d, camera_lambda), pick * pdf, pick * pdf * scene.disk.pdf());
+        const auto [pick, emission_pick] = picks(depth, uint32_t(world.environment_light()));
+        const float pdf = environment_pdf(*env, ray.d);
+        add_emitted(depth, environment_Le(*env, ray.d, camera_lambda), pick * pdf, emission_pick * pdf * scene.disk.pdf());
       }
       break;
     }
@@ -264,9 +274,9 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, const SampledW
       const int index = world.area_light(si->instance, si->prim);
       const Light& light = world.lights()[index];
       if (std::get<AreaLight>(light).emits_towards(si->wo)) {
-        const float pick = lights.pmf(uint32_t(index));
+        const auto [pick, emission_pick] = picks(depth, uint32_t(index));
         const EmissionPdf e = pdf_le(light, si->wo, scene.disk);
-        add_emitted(depth, material.emitted(si->at, camera_lambda), pick * e.pdf_pos, pick * e.product());
+        add_emitted(depth, material.emitted(si->at, camera_lambda), pick * e.pdf_pos, emission_pick * e.product());
       }
     }
     if (depth == options.max_depth || scene.light_tracing) break;
@@ -302,6 +312,7 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, const SampledW
     beta *= bs->f * (abs_cos_theta(bs->wi) / bs->pdf);
     m.scatter(bs->pdf, bs->specular ? bs->pdf : bsdf_pdf(bsdf, bs->wi, wo), abs_dot(si->n, wi), bs->specular, factors);
     ray = si->spawn(wi);
+    prev = {si->p, si->p_error, si->n};
     if (bs->transmission) {
       eta_scale *= sqr(bs->eta);
       if (scene.media) media.cross(material, entering);

@@ -1,45 +1,75 @@
 #pragma once
-// Chooses a light for next-event estimation with probability proportional to its power.
+// How a light is chosen for next-event estimation at a point (--light-sampler): the two ways,
+// registered in the table kLightSamplers below, behind one interface the integrators call.
+//   power: in proportion to the light's power, wherever the point is (PowerLightSampler);
+//   tree:  by a light tree's estimate of what each light brings to the point (LightTree).
+// Light paths (BDPT, VCM, light tracing) start from a light chosen by power alone (by_power): an
+// emission has no point to choose for.
 
-#include <algorithm>
-#include <cstdint>
-#include <vector>
+#include <array>
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include "core/render/light_tree.h"
+#include "core/render/lights.h"
+#include "core/render/power_light_sampler.h"
 
 namespace prism {
 
-class PowerLightSampler {
+enum class LightSamplerKind { power, tree };
+
+struct LightSamplerInfo {
+  LightSamplerKind kind;
+  std::string_view name;         // --light-sampler NAME, prism.lightSampler
+  std::string_view description;  // one line, for --help
+};
+
+inline constexpr std::array kLightSamplers{
+    LightSamplerInfo{LightSamplerKind::tree, "tree",
+                     "a light tree: lights chosen by their estimated light at the point (the default)"},
+    LightSamplerInfo{LightSamplerKind::power, "power", "lights chosen by their power alone"},
+};
+inline constexpr LightSamplerKind kDefaultLightSampler = LightSamplerKind::tree;
+
+class LightSampler {
  public:
-  PowerLightSampler() = default;
-  // Lights of zero power are never chosen; if all have zero power, all are equally likely.
-  explicit PowerLightSampler(const std::vector<float>& powers) {
-    double total = 0;
-    for (float p : powers) total += std::max(p, 0.f);
-    const bool uniform = !(total > 0);
-    double acc = 0;
-    cdf_.reserve(powers.size());
-    pmf_.reserve(powers.size());
-    for (float p : powers) {
-      const double w = uniform ? 1.0 / double(powers.size()) : std::max(p, 0.f) / total;
-      pmf_.push_back(float(w));
-      acc += w;
-      cdf_.push_back(float(acc));
-    }
-    if (!cdf_.empty()) cdf_.back() = 1.f;
+  LightSampler() = default;
+  // Light i's power[i] and, for a finite light, its bounds[i]. The tree is built only where it can
+  // choose: for two finite lights or more.
+  LightSampler(LightSamplerKind kind, std::span<const std::optional<LightBounds>> bounds,
+               std::span<const float> power)
+      : power_(std::vector<float>(power.begin(), power.end())) {
+    size_t finite = 0;
+    for (const auto& b : bounds) finite += b.has_value();
+    if (kind == LightSamplerKind::tree && finite >= 2) tree_.emplace(bounds, power);
   }
 
-  bool empty() const { return pmf_.empty(); }
-  float pmf(uint32_t light) const { return pmf_[light]; }
-
-  // The light whose CDF interval holds u ∈ [0, 1).
-  uint32_t sample(float u) const {
-    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-    uint32_t i = uint32_t(std::min<ptrdiff_t>(it - cdf_.begin(), ptrdiff_t(cdf_.size()) - 1));
-    while (pmf_[i] == 0.f && i > 0) --i;  // float ties at the boundary of a zero-power light
-    return i;
+  bool empty() const { return power_.empty(); }
+  // A light for the point of ctx, with the probability of choosing it there.
+  std::optional<SampledLight> sample(const LightSampleContext& ctx, float u) const {
+    if (tree_) return tree_->sample(shading_point(ctx), u);
+    if (power_.empty()) return std::nullopt;
+    const uint32_t light = power_.sample(u);
+    return SampledLight{light, power_.pmf(light)};
   }
+  // The probability that sample(ctx, ·) chooses `light`.
+  float pmf(const LightSampleContext& ctx, uint32_t light) const {
+    return tree_ ? tree_->pmf(shading_point(ctx), light) : power_.pmf(light);
+  }
+  // The light a light path starts from, chosen by power.
+  const PowerLightSampler& by_power() const { return power_; }
+  const LightTree* tree() const { return tree_ ? &*tree_ : nullptr; }
 
  private:
-  std::vector<float> cdf_, pmf_;
+  // An opaque surface receives light on its reflection side only; otherwise either side counts.
+  static ShadingPoint shading_point(const LightSampleContext& ctx) {
+    const bool hemisphere = ctx.reflect_axis != Vec3f(0.f, 0.f, 0.f);
+    return {ctx.p, hemisphere ? ctx.reflect_axis : ctx.n, hemisphere};
+  }
+
+  PowerLightSampler power_;
+  std::optional<LightTree> tree_;
 };
 
 }  // namespace prism

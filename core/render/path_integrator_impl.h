@@ -17,21 +17,20 @@ namespace prism {
 
 namespace {
 
-// Next-event estimation: one light chosen by power, weighted against BSDF sampling by MIS.
+// Next-event estimation: one light chosen for the point (light_sampler.h), weighted against BSDF
+// sampling by MIS.
 template <int N, class B>
 SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& si, const Frame& frame, const B& bsdf,
                                  const Vec3f& wo, const Vec3f& reflect_axis, const SampledWavelengths<N>& lambda,
                                  const PathSky<N>& sky, Sampler& sampler, RayCounters& counters) {
   const float u_light = sampler.get_1d();
   const Vec2f u = sampler.get_2d();
-  const PowerLightSampler& ls = world.light_sampler();
-  if (ls.empty()) return SampledSpectrum<N>(0.f);
-  const uint32_t index = ls.sample(u_light);
-  const float pmf = ls.pmf(index);
-  const Light& light = world.lights()[index];
+  const auto chosen = world.light_sampler().sample(LightSampleContext{si.p, si.p_error, si.n, reflect_axis}, u_light);
+  if (!chosen || chosen->pmf == 0.f) return SampledSpectrum<N>(0.f);
+  const Light& light = world.lights()[chosen->light];
   const auto c = light_contribution(world, si, frame, bsdf, wo, light, u, lambda, counters, reflect_axis, &sky);
-  if (!c || pmf == 0.f) return SampledSpectrum<N>(0.f);
-  const float light_pdf = pmf * c->light_pdf;
+  if (!c) return SampledSpectrum<N>(0.f);
+  const float light_pdf = chosen->pmf * c->light_pdf;
   const float weight = is_delta(light) ? 1.f : balance_heuristic(light_pdf, c->bsdf_pdf);
   return c->f_L * (weight / light_pdf);
 }
@@ -64,7 +63,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
   SampledSpectrum<N> L(0.f), beta(1.f), path_pdfs(1.f);
   bool specular_bounce = false;
   float bsdf_pdf_prev = 0.f;  // solid-angle pdf of the BSDF sample that made `ray`
-  Vec3f reflect_axis_prev;    // where that vertex sampled the environment (see LightSampleContext)
+  LightSampleContext prev;    // that vertex, as it chose a light (and sampled the environment)
   float eta_scale = 1.f;      // Π η² of the refractions so far: undoes radiance scaling for roulette
   bool roulette_due = false;  // a bounce since the last roulette, and past the first one
   // From the last scattering vertex to ray.o, over the BLEND surfaces passed: light met beyond them
@@ -72,7 +71,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
   float travelled = 0;
   MediumStack media;
   BeerLambert<N> absorption;
-  const PowerLightSampler& light_sampler = world.light_sampler();
+  const LightSampler& light_sampler = world.light_sampler();
   const PathSky<N> sky(world.environment(), lambda);
   BsdfCache<N> bsdf_cache;
 
@@ -92,7 +91,8 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
       if (depth == 0 || specular_bounce || !options.next_event) {
         L += beta * Le;
       } else {
-        const float light_pdf = light_sampler.pmf(uint32_t(light)) * light_pdf_solid_angle();
+        const float pmf = light_sampler.pmf(prev, uint32_t(light));
+        const float light_pdf = pmf > 0 ? pmf * light_pdf_solid_angle() : 0.f;
         L += beta * Le * balance_heuristic(bsdf_pdf_prev, light_pdf);
       }
     };
@@ -100,7 +100,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     if (!si) {
       if (const Light* env = world.environment())
         add_emitted(environment_Le(*env, ray.d, lambda, &sky), world.environment_light(),
-                    [&] { return environment_pdf(*env, ray.d, reflect_axis_prev); });
+                    [&] { return environment_pdf(*env, ray.d, prev.reflect_axis); });
       break;
     }
     const Material& material = *si->material;
@@ -178,7 +178,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     beta *= bs->f * (abs_cos_theta(bs->wi) / bs->pdf);
     specular_bounce = bs->specular;
     bsdf_pdf_prev = bs->pdf;
-    reflect_axis_prev = reflect_axis;
+    prev = {si->p, si->p_error, si->n, reflect_axis};
     ::new (&ray) Ray(si->spawn(wi));  // in place, as render_tile's camera rays are (renderer.cpp)
     travelled = 0;
     if (bs->transmission) {

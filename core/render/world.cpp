@@ -65,13 +65,13 @@ std::vector<const Mesh*> attribute_meshes(const std::vector<Mesh>& meshes) {
 
 }  // namespace
 
-World::World(const Scene& scene, const AccelOptions& accel)
+World::World(const Scene& scene, const AccelOptions& accel, LightSamplerKind light_sampler)
     : scene_(scene), features_(analyze_features(scene)), accel_(build_accel(scene, accel)) {
   for (const Instance& inst : scene.instances)
     instance_normals_.push_back({inst.to_world.determinant() < 0, cofactor(inst.to_world)});
   attribute_mesh_ = attribute_meshes(scene.meshes);
   add_enclosures();
-  add_lights();
+  add_lights(light_sampler);
   // The tables a render reads, loaded here rather than at the first hit inside the timed render.
   RgbToSpectrumTable::srgb();
   cie();
@@ -115,8 +115,9 @@ void World::add_enclosures() {
                               : Enclosure{transform_bounds(inst.to_world, bounds[inst.mesh]), side[inst.mesh]});
 }
 
-void World::add_lights() {
+void World::add_lights(LightSamplerKind light_sampler) {
   std::vector<float> powers;
+  std::vector<std::optional<LightBounds>> bounds;  // of the finite lights, for a light tree
   std::vector<std::optional<float>> material_luminance(scene_.materials.size());  // once per emitting material
   instance_light_base_.assign(scene_.instances.size(), -1);
   for (uint32_t i = 0; i < scene_.instances.size(); ++i) {
@@ -146,11 +147,16 @@ void World::add_lights() {
       lights_.push_back(AreaLight{v[0], v[1], v[2], n, area, &material, &mesh, p, material.double_sided});
       // Φ = π · A · L for a one-sided Lambertian emitter; luminance stands in for L.
       powers.push_back(area > 0 ? kPi * area * *power_luminance * (material.double_sided ? 2.f : 1.f) : 0.f);
+      // Normals in one direction, each emitting over its hemisphere (θ_e = π/2).
+      Bounds3f box;
+      for (const Vec3f& q : v) box.extend(q);
+      bounds.push_back(LightBounds{box, n, powers.back(), 1.f, 0.f, material.double_sided});
     }
   }
   for (const PointLight& pl : scene_.point_lights) {
     lights_.push_back(PointLightSource{pl.position, &pl.intensity});
     powers.push_back(4 * kPi * spectrum_to_xyz(pl.intensity).y);  // Φ = 4π I
+    bounds.push_back(LightBounds{Bounds3f{pl.position, pl.position}, {0.f, 0.f, 1.f}, powers.back(), -1.f, 0.f});
   }
   for (const SpotLight& sl : scene_.spot_lights) {
     lights_.push_back(SpotLightSource(sl));
@@ -158,6 +164,9 @@ void World::add_lights() {
     // and outer angles (exact when they are equal).
     const float cos_mid = std::cos((sl.inner_angle + sl.outer_angle) / 2);
     powers.push_back(2 * kPi * (1 - cos_mid) * spectrum_to_xyz(sl.intensity).y);
+    // Full intensity within the inner angle (θ_o), falling to none at the outer (θ_o + θ_e).
+    bounds.push_back(LightBounds{Bounds3f{sl.position, sl.position}, sl.direction, powers.back(),
+                                 std::cos(sl.inner_angle), std::cos(sl.outer_angle - sl.inner_angle)});
   }
   // Infinite lights deliver power π r² × (their irradiance) to a sphere bounding the scene
   // (pbrt-v4 §12.4 and §12.5.1).
@@ -166,6 +175,7 @@ void World::add_lights() {
   for (const DirectionalLight& dl : scene_.directional_lights) {
     lights_.push_back(DirectionalLightSource{dl.direction, &dl.illuminance});
     powers.push_back(kPi * r * r * spectrum_to_xyz(dl.illuminance).y);
+    bounds.emplace_back();
   }
   if (scene_.environment && scene_.environment_map)
     fail("a scene has either a constant environment or an environment map, not both");
@@ -175,14 +185,16 @@ void World::add_lights() {
     environment_radiance_ = std::make_unique<const Spectrum>(densely_sampled(*scene_.environment));
     lights_.push_back(EnvironmentLight{environment_radiance_.get()});
     powers.push_back(4 * kPi * kPi * r * r * spectrum_to_xyz(*scene_.environment).y);  // π r² · 4π L
+    bounds.emplace_back();
   }
   if (scene_.environment_map) {
     environment_map_ = std::make_unique<const EnvironmentMap>(*scene_.environment_map);
     environment_light_ = int(lights_.size());
     lights_.push_back(EnvironmentMapLight{environment_map_.get()});
     powers.push_back(kPi * r * r * environment_map_->luminance_integral());
+    bounds.emplace_back();
   }
-  light_sampler_ = PowerLightSampler(powers);
+  light_sampler_ = LightSampler(light_sampler, bounds, powers);
   std::vector<float> area_powers;
   for (uint32_t i = 0; i < lights_.size(); ++i) {
     (is_delta(lights_[i]) ? delta_lights_ : area_lights_).push_back(i);

@@ -1,7 +1,7 @@
 #pragma once
 // The scene made ready to render: the acceleration structure over its instances, the lights
-// (one AreaLight per emissive triangle, punctual lights, environment) with their power sampler,
-// and the surface queries the integrators call.
+// (one AreaLight per emissive triangle, punctual lights, environment) with the sampler that
+// chooses among them, and the surface queries the integrators call.
 
 #include <memory>
 #include <optional>
@@ -11,6 +11,7 @@
 #include "core/render/interaction.h"
 #include "core/render/light_sampler.h"
 #include "core/render/lights.h"
+#include "core/render/power_light_sampler.h"
 #include "core/scene/scene.h"
 #include "core/scene/scene_features.h"
 
@@ -21,7 +22,8 @@ Accel build_accel(const Scene& scene, const AccelOptions& options = {});
 
 class World {
  public:
-  explicit World(const Scene& scene, const AccelOptions& accel = {});
+  explicit World(const Scene& scene, const AccelOptions& accel = {},
+                 LightSamplerKind light_sampler = kDefaultLightSampler);
 
   // The first surface along the ray that is not cut away by its material's alpha (glTF MASK
   // and BLEND; BLEND decided stochastically by a hash of the ray, pbrt-v4 style). With
@@ -51,7 +53,7 @@ class World {
   const SceneFeatures& features() const { return features_; }
   const Accel& accel() const { return accel_; }
   const std::vector<Light>& lights() const { return lights_; }
-  const PowerLightSampler& light_sampler() const { return light_sampler_; }
+  const LightSampler& light_sampler() const { return light_sampler_; }
   // Delta (point, spot, directional) lights, and a power sampler over the other lights (for
   // Whitted-style direct light).
   const std::vector<uint32_t>& delta_lights() const { return delta_lights_; }
@@ -76,7 +78,7 @@ class World {
   void shade(SurfaceInteraction& si, const AccelHit& hit) const;
   bool cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_blend) const;
   void add_enclosures();
-  void add_lights();
+  void add_lights(LightSamplerKind light_sampler);
 
   const Scene& scene_;
   SceneFeatures features_;
@@ -107,7 +109,7 @@ class World {
   std::unique_ptr<const EnvironmentMap> environment_map_;
   std::unique_ptr<const Spectrum> environment_radiance_;  // the constant environment, tabulated per nm
   std::vector<std::optional<ConstantSpectra>> spectra_;   // per material (SurfacePoint)
-  PowerLightSampler light_sampler_;
+  LightSampler light_sampler_;
   std::vector<uint32_t> delta_lights_, area_lights_;
   PowerLightSampler area_light_sampler_;
 };

@@ -136,7 +136,10 @@ void check_mean(const TestRender& img, int x0, int y0, int x1, int y1, double ex
 }
 
 TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, int height, RenderOptions options) {
-  const World world(scene);
+  return render_rgb(World(scene), camera, width, height, options);
+}
+
+TestRender render_rgb(const World& world, const CameraDesc& camera, int width, int height, RenderOptions options) {
   options.progress = false;
   const RenderResult r = render(world, Camera(camera, width, height), options);
   std::vector<float> rgb = r.state.film.xyz_image();

@@ -54,6 +54,7 @@ struct MeanDifference {
 MeanDifference mean_difference(const TestRender& a, const TestRender& b, int channel);
 
 TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, int height, RenderOptions options);
+TestRender render_rgb(const World& world, const CameraDesc& camera, int width, int height, RenderOptions options);
 TestRender render_rgb(const Scene& scene, const CameraDesc& camera, int width, int height, int spp, int max_depth = 64,
                       uint64_t seed = 1, int threads = 0, IntegratorKind integrator = IntegratorKind::path);
 

@@ -1,0 +1,46 @@
+#include "core/render/light_bounds.h"
+
+namespace prism {
+
+namespace {
+
+// v rotated by angle θ about the unit axis k (Rodrigues' formula).
+Vec3f rotate(const Vec3f& v, const Vec3f& k, float theta) {
+  const float c = std::cos(theta), s = std::sin(theta);
+  return v * c + cross(k, v) * s + k * (dot(k, v) * (1 - c));
+}
+
+}  // namespace
+
+LightBounds merge(const LightBounds& a, const LightBounds& b) {
+  if (a.phi == 0) return b;
+  if (b.phi == 0) return a;
+  LightBounds m;
+  m.bounds = a.bounds;
+  m.bounds.extend(b.bounds);
+  m.phi = a.phi + b.phi;
+  m.cos_theta_e = std::min(a.cos_theta_e, b.cos_theta_e);
+  m.two_sided = a.two_sided || b.two_sided;
+  // The cone: one holds the other, or a cone of half the angles' sum about a direction between them.
+  const float theta_a = safe_acos(a.cos_theta_o), theta_b = safe_acos(b.cos_theta_o);
+  const float theta_d = safe_acos(dot(a.w, b.w));
+  if (std::min(theta_d + theta_b, kPi) <= theta_a) {
+    m.w = a.w, m.cos_theta_o = a.cos_theta_o;
+    return m;
+  }
+  if (std::min(theta_d + theta_a, kPi) <= theta_b) {
+    m.w = b.w, m.cos_theta_o = b.cos_theta_o;
+    return m;
+  }
+  const float theta_o = (theta_a + theta_d + theta_b) / 2;
+  const Vec3f axis = cross(a.w, b.w);
+  if (theta_o >= kPi || length_squared(axis) == 0) {
+    m.w = a.w, m.cos_theta_o = -1;  // every direction
+    return m;
+  }
+  m.w = normalize(rotate(a.w, normalize(axis), theta_o - theta_a));
+  m.cos_theta_o = std::cos(theta_o);
+  return m;
+}
+
+}  // namespace prism
