@@ -4,22 +4,19 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstring>
 
 #include "core/base/error.h"
+
+#ifdef __AVX__
+#include <immintrin.h>
+#endif
 
 namespace prism {
 
 namespace {
 
 constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
-
-// cos(max(0, a − b)) and sin(max(0, a − b)) for angles a, b in [0, π] given by their sines and cosines.
-float cos_sub_clamped(float sin_a, float cos_a, float sin_b, float cos_b) {
-  return cos_a > cos_b ? 1.f : cos_a * cos_b + sin_a * sin_b;
-}
-float sin_sub_clamped(float sin_a, float cos_a, float sin_b, float cos_b) {
-  return cos_a > cos_b ? 0.f : sin_a * cos_b - cos_a * sin_b;
-}
 
 // The solid-angle measure of a cone of normals within θ_o, each emitting within θ_e about itself
 // (Conty Estevez & Kulla 2018, eq. 1): the orientation term of the split cost.
@@ -48,84 +45,126 @@ float split_cost(const LightBounds& b, const Bounds3f& parent, int axis) {
 
 }  // namespace
 
-LightTree::Node LightTree::Node::make(const LightBounds& b, uint32_t index, bool leaf) {
-  Node n;
-  n.centre = b.bounds.centroid();
+void LightTree::Node::set(int lane, const LightBounds& b, uint32_t to) {
+  const Vec3f c = b.bounds.centroid();
+  cx[lane] = c.x, cy[lane] = c.y, cz[lane] = c.z;
   // The box's circumsphere, widened by the rounding of the centre.
   const Vec3f far = max(abs(b.bounds.lo), abs(b.bounds.hi));
-  n.radius = next_float_up(0.5f * length(b.bounds.diagonal()) + 1e-6f * std::max({far.x, far.y, far.z}));
-  n.phi = b.phi;
-  n.w = b.w;
+  radius[lane] = next_float_up(0.5f * length(b.bounds.diagonal()) + 1e-6f * std::max({far.x, far.y, far.z}));
+  phi[lane] = b.phi;
+  wx[lane] = b.w.x, wy[lane] = b.w.y, wz[lane] = b.w.z;
   // A margin for the rounding of merge's trigonometry: the cone only widens.
   const float theta_o = safe_acos(b.cos_theta_o) + 1e-4f;
-  n.cos_theta_o = theta_o >= kPi ? -1.f : std::cos(theta_o);
-  n.cos_theta_e = b.cos_theta_e;
-  n.index = index;
-  n.leaf = leaf;
-  n.two_sided = b.two_sided;
-  return n;
+  cos_o[lane] = theta_o >= kPi ? -1.f : std::cos(theta_o);
+  sin_o[lane] = theta_o >= kPi ? 0.f : std::sin(theta_o);
+  cos_e[lane] = b.cos_theta_e;
+  two_sided[lane] = b.two_sided ? 1.f : 0.f;
+  child[lane] = to;
 }
 
-float LightTree::Node::importance(const ShadingPoint& at) const {
-  const Vec3f d = at.p - centre;
-  const float d2_centre = length_squared(d), r2 = radius * radius;
-  // θ_b: the half-angle of the cone from the point that holds the sphere (inside it: all directions).
-  // Near or inside the sphere the distance is taken as its radius: the bound stays finite.
-  float cos_b = -1, sin_b = 0, d2 = r2;
-  Vec3f wi = w;  // from the lights to the point
-  if (d2_centre > r2) {
-    const float inv_d = 1 / std::sqrt(d2_centre);
-    wi = d * inv_d;
-    sin_b = radius * inv_d, cos_b = safe_sqrt(1 - sin_b * sin_b), d2 = d2_centre;
-  }
-  if (!(d2 > 0)) d2 = 1e-30f;
-  float cos_w = dot(w, wi);
-  if (two_sided) cos_w = std::abs(cos_w);
-  const float sin_w = safe_sqrt(1 - cos_w * cos_w);
-  const float sin_o = safe_sqrt(1 - cos_theta_o * cos_theta_o);
-  // θ' = max(0, θ_w − θ_o − θ_b)
-  const float cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, cos_theta_o);
-  const float sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, cos_theta_o);
-  const float cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
-  if (cos_p < cos_theta_e) return 0;  // (equal: a hard-edged spot light's inside)
-  float importance = phi * cos_p / d2;
-  if (at.n != Vec3f(0.f, 0.f, 0.f)) {
-    const float cos_i = at.hemisphere ? -dot(wi, at.n) : std::abs(dot(wi, at.n));
-    importance *= std::max(cos_sub_clamped(safe_sqrt(1 - cos_i * cos_i), cos_i, sin_b, cos_b), 0.f);
-  }
-  return std::max(importance, 0.f);
+namespace {
+
+// Eight floats computed together (GCC's vector extension: AVX where the build has it, else two
+// SSE halves); comparisons give lane masks that ?: selects by. (Without AVX, GCC warns that such
+// values are returned differently than with it: these functions are internal, so it is no matter.)
+#pragma GCC diagnostic ignored "-Wpsabi"
+using Lanes = float __attribute__((vector_size(32)));
+static_assert(LightTree::kWidth == 8);
+
+Lanes load(const std::array<float, 8>& a) {
+  Lanes v;
+  std::memcpy(&v, a.data(), sizeof v);
+  return v;
+}
+Lanes splat(float x) { return Lanes{x, x, x, x, x, x, x, x}; }
+Lanes max(const Lanes& a, const Lanes& b) { return a > b ? a : b; }
+Lanes abs(const Lanes& a) { return a < 0 ? -a : a; }
+Lanes sqrt(const Lanes& a) {
+#ifdef __AVX__
+  return _mm256_sqrt_ps(a);
+#else
+  Lanes r;
+  for (int j = 0; j < 8; ++j) r[j] = std::sqrt(a[j]);
+  return r;
+#endif
 }
 
-LightTree::LightTree(std::span<const std::optional<LightBounds>> bounds, std::span<const float> power) {
-  trail_.assign(bounds.size(), kOutside);
-  std::vector<float> top_power{0.f};
-  std::vector<Item> items;
-  for (uint32_t i = 0; i < bounds.size(); ++i) {
-    if (!bounds[i]) {
-      trail_[i] = kOutside | top_power.size();
-      infinite_.push_back(i);
-      top_power.push_back(power[i]);
-    } else if (bounds[i]->phi > 0) {
-      items.push_back({i, *bounds[i]});
-      top_power[0] += power[i];
-    }
+}  // namespace
+
+std::array<float, LightTree::kWidth> LightTree::Node::importance(const ShadingPoint& at) const {
+  const Lanes zero = splat(0.f), one = splat(1.f);
+  const Lanes dx = splat(at.p.x) - load(cx), dy = splat(at.p.y) - load(cy), dz = splat(at.p.z) - load(cz);
+  const Lanes r = load(radius), w_x = load(wx), w_y = load(wy), w_z = load(wz);
+  const Lanes d2_centre = dx * dx + dy * dy + dz * dz;
+  // θ_b: the half-angle of the cone from the point that holds the sphere (inside it: all
+  // directions). Near or inside the sphere the distance is taken as its radius: the bound stays finite.
+  const auto outside = d2_centre > r * r;
+  const Lanes inv_d = one / sqrt(max(d2_centre, splat(1e-30f)));
+  // From the lights to the point.
+  const Lanes wix = outside ? dx * inv_d : w_x, wiy = outside ? dy * inv_d : w_y, wiz = outside ? dz * inv_d : w_z;
+  const Lanes sin_b = outside ? r * inv_d : zero;
+  const Lanes cos_b = outside ? sqrt(max(zero, one - sin_b * sin_b)) : -one;
+  const Lanes d2 = max(outside ? d2_centre : r * r, splat(1e-30f));
+  const Lanes cos_w_signed = w_x * wix + w_y * wiy + w_z * wiz;
+  const Lanes cos_w = load(two_sided) != 0 ? abs(cos_w_signed) : cos_w_signed;
+  const Lanes sin_w = sqrt(max(zero, one - cos_w * cos_w));
+  // θ' = max(0, θ_w − θ_o − θ_b), as cos(max(0, a − b)) = 1 if a < b, else cos a cos b + sin a sin b.
+  const Lanes co = load(cos_o), so = load(sin_o);
+  const auto within = cos_w > co;
+  const Lanes cos_x = within ? one : cos_w * co + sin_w * so, sin_x = within ? zero : sin_w * co - cos_w * so;
+  const Lanes cos_p = cos_x > cos_b ? one : cos_x * cos_b + sin_x * sin_b;
+  Lanes importance = load(phi) * cos_p / d2;
+  if (at.n != Vec3f(0.f, 0.f, 0.f)) {  // the cosine at the point, bounded likewise
+    const Lanes dot_n = wix * at.n.x + wiy * at.n.y + wiz * at.n.z;
+    const Lanes cos_i = at.hemisphere ? -dot_n : abs(dot_n);
+    const Lanes sin_i = sqrt(max(zero, one - cos_i * cos_i));
+    importance *= max(cos_i > cos_b ? one : cos_i * cos_b + sin_i * sin_b, zero);
   }
-  if (items.size() >= (1u << 30)) fail("more than 2^30 lights");
-  top_ = PowerLightSampler(top_power);
-  if (items.empty()) return;
-  nodes_.reserve(2 * items.size() - 1);
-  // Split by cost while the depth leaves room for balanced splits below (trails of 64 bits).
-  const int log2_n = int(std::bit_width(items.size() - 1));
-  build(items, 0, items.size(), 0, 0, 63 - log2_n);
+  // (cos_p = cos θ_e: a hard-edged spot light's inside.)
+  importance = cos_p < load(cos_e) ? zero : max(importance, zero);
+  std::array<float, kWidth> out;
+  std::memcpy(out.data(), &importance, sizeof importance);
+  return out;
 }
 
-LightBounds LightTree::build(std::vector<Item>& items, size_t begin, size_t end, uint64_t trail, int depth,
-                             int sah_depth) {
-  const uint32_t index = uint32_t(nodes_.size());
+namespace {
+
+// The sum of a node's importances, added in one order wherever it is taken (sample and pmf agree
+// to the last bit).
+float total(const std::array<float, LightTree::kWidth>& importance) {
+  float sum = 0;
+  for (float i : importance) sum += i;
+  return sum;
+}
+
+}  // namespace
+
+struct LightTree::Binary {
+  LightBounds bounds;
+  uint32_t first = 0, second = 0;  // children (an inner node)
+  uint32_t light = 0;              // a leaf's
+  bool leaf = false;
+};
+
+namespace {
+
+struct Item {
+  uint32_t light;
+  LightBounds bounds;
+};
+
+// The binary tree over items[begin, end), appended to `nodes`; returns its root's index. Below
+// depth `sah_depth` the splits halve by count, which bounds the depth (and the recursion).
+template <class Binary>
+uint32_t build_binary(std::vector<Item>& items, size_t begin, size_t end, int depth, std::vector<Binary>& nodes) {
+  constexpr int kSahDepth = 64;
+  const uint32_t index = uint32_t(nodes.size());
+  nodes.emplace_back();
   if (end - begin == 1) {
-    trail_[items[begin].light] = trail;
-    nodes_.push_back(Node::make(items[begin].bounds, items[begin].light, true));
-    return items[begin].bounds;
+    nodes[index].bounds = items[begin].bounds;
+    nodes[index].light = items[begin].light;
+    nodes[index].leaf = true;
+    return index;
   }
   Bounds3f box, centroids;
   for (size_t i = begin; i < end; ++i) {
@@ -141,7 +180,7 @@ LightBounds LightTree::build(std::vector<Item>& items, size_t begin, size_t end,
     const int b = int(kBuckets * ((item.bounds.bounds.centroid()[axis] - centroids.lo[axis]) / extent));
     return std::clamp(b, 0, kBuckets - 1);
   };
-  for (int axis = 0; axis < 3 && depth < sah_depth; ++axis) {
+  for (int axis = 0; axis < 3 && depth < kSahDepth; ++axis) {
     if (!(centroids.hi[axis] > centroids.lo[axis])) continue;
     std::array<LightBounds, kBuckets> bucket{};
     for (size_t i = begin; i < end; ++i) {
@@ -175,13 +214,71 @@ LightBounds LightTree::build(std::vector<Item>& items, size_t begin, size_t end,
                        return a.bounds.bounds.centroid()[axis] < b.bounds.bounds.centroid()[axis];
                      });
   }
-  nodes_.emplace_back();  // filled once its children are
-  const LightBounds first = build(items, begin, mid, trail, depth + 1, sah_depth);
-  const uint32_t second_index = uint32_t(nodes_.size());
-  const LightBounds second = build(items, mid, end, trail | uint64_t(1) << depth, depth + 1, sah_depth);
-  const LightBounds all = merge(first, second);
-  nodes_[index] = Node::make(all, second_index, false);
-  return all;
+  const uint32_t first = build_binary(items, begin, mid, depth + 1, nodes);
+  const uint32_t second = build_binary(items, mid, end, depth + 1, nodes);
+  nodes[index].first = first, nodes[index].second = second;
+  nodes[index].bounds = merge(nodes[first].bounds, nodes[second].bounds);
+  return index;
+}
+
+}  // namespace
+
+LightTree::LightTree(std::span<const std::optional<LightBounds>> bounds, std::span<const float> power) {
+  place_.assign(bounds.size(), kOutside);
+  std::vector<float> top_power{0.f};
+  std::vector<Item> items;
+  for (uint32_t i = 0; i < bounds.size(); ++i) {
+    if (!bounds[i]) {
+      place_[i] = kOutside | uint32_t(top_power.size());
+      infinite_.push_back(i);
+      top_power.push_back(power[i]);
+    } else if (bounds[i]->phi > 0) {
+      items.push_back({i, *bounds[i]});
+      top_power[0] += power[i];
+    }
+  }
+  top_ = PowerLightSampler(top_power);
+  if (items.empty()) return;
+  if (items.size() >= (1u << 27)) fail("more than 2^27 emitters for the light tree");
+  std::vector<Binary> binary;
+  binary.reserve(2 * items.size() - 1);
+  const uint32_t root = build_binary(items, 0, items.size(), 0, binary);
+  nodes_.reserve(2 * items.size() / (kWidth - 1) + 1);
+  collapse(binary, root, 0, 0);
+}
+
+// The node whose lanes are the binary tree's nodes below `root`, up to eight: the widest of them
+// opened while there is room. Lanes that stay empty have no power and an emission angle no point
+// is within (cos θ_e = 2).
+void LightTree::collapse(const std::vector<Binary>& binary, uint32_t root, uint32_t parent, uint32_t parent_lane) {
+  const uint32_t index = uint32_t(nodes_.size());
+  nodes_.emplace_back();
+  Node& made = nodes_[index];
+  made.parent = parent, made.parent_lane = parent_lane;
+  const LightBounds empty{Bounds3f{{0.f, 0.f, 0.f}, {0.f, 0.f, 0.f}}, {0.f, 0.f, 1.f}, 0.f, 1.f, 2.f};
+  for (int lane = 0; lane < kWidth; ++lane) made.set(lane, empty, kLeaf);
+  std::vector<uint32_t> lanes{root};
+  for (;;) {
+    int widest = -1;
+    float widest_area = -1;
+    for (size_t i = 0; i < lanes.size(); ++i)
+      if (const Binary& b = binary[lanes[i]]; !b.leaf && surface_area(b.bounds.bounds) > widest_area)
+        widest = int(i), widest_area = surface_area(b.bounds.bounds);
+    if (widest < 0 || lanes.size() + 1 > size_t(kWidth)) break;
+    const Binary& open = binary[lanes[size_t(widest)]];
+    lanes[size_t(widest)] = open.first;
+    lanes.push_back(open.second);
+  }
+  for (int lane = 0; lane < int(lanes.size()); ++lane) {
+    const Binary& b = binary[lanes[size_t(lane)]];
+    if (b.leaf) {
+      nodes_[index].set(lane, b.bounds, kLeaf | b.light);
+      place_[b.light] = index * kWidth + uint32_t(lane);
+    } else {
+      nodes_[index].set(lane, b.bounds, uint32_t(nodes_.size()));
+      collapse(binary, lanes[size_t(lane)], index, uint32_t(lane));
+    }
+  }
 }
 
 std::optional<SampledLight> LightTree::sample(const ShadingPoint& at, float u) const {
@@ -190,39 +287,54 @@ std::optional<SampledLight> LightTree::sample(const ShadingPoint& at, float u) c
   float pmf = top_.pmf(slot);
   if (slot > 0) return SampledLight{infinite_[slot - 1], pmf};
   if (nodes_.empty() || pmf == 0) return std::nullopt;
-  for (uint32_t i = 0;;) {
-    const Node& node = nodes_[i];
-    if (node.leaf) {
-      if (i == 0 && !(node.importance(at) > 0)) return std::nullopt;
-      return SampledLight{node.index, pmf};
+  for (uint32_t node = 0;;) {
+    const std::array<float, kWidth> importance = nodes_[node].importance(at);
+    const float sum = total(importance);
+    if (!(sum > 0)) return std::nullopt;
+    // The lane whose share of [0, sum) holds u · sum (the last that can be chosen, if rounding
+    // leaves u · sum beyond them all).
+    const float target = u * sum;
+    int lane = kWidth - 1;
+    while (!(importance[size_t(lane)] > 0)) --lane;
+    float below = 0;
+    for (int j = 0; j < lane; ++j) {
+      if (!(importance[size_t(j)] > 0)) continue;
+      if (target < below + importance[size_t(j)]) {
+        lane = j;
+        break;
+      }
+      below += importance[size_t(j)];
     }
-    const float c0 = nodes_[i + 1].importance(at), c1 = nodes_[node.index].importance(at);
-    if (!(c0 + c1 > 0)) return std::nullopt;
-    const float p0 = c0 / (c0 + c1);
-    if (u < p0) {
-      i = i + 1, pmf *= p0, u = std::min(u / p0, kOneMinusEpsilon);
-    } else {
-      i = node.index, pmf *= 1 - p0, u = std::min((u - p0) / (1 - p0), kOneMinusEpsilon);
-    }
+    const float chosen = importance[size_t(lane)];
+    pmf *= chosen / sum;
+    u = std::clamp((target - below) / chosen, 0.f, kOneMinusEpsilon);
+    const uint32_t child = nodes_[node].child[size_t(lane)];
+    if (child & kLeaf) return SampledLight{child & ~kLeaf, pmf};
+    node = child;
   }
 }
 
 float LightTree::pmf(const ShadingPoint& at, uint32_t light) const {
-  uint64_t trail = trail_[light];
-  if (trail & kOutside) return trail == kOutside ? 0.f : top_.pmf(uint32_t(trail & ~kOutside));
-  float pmf = top_.pmf(0);
-  for (uint32_t i = 0;;) {
-    const Node& node = nodes_[i];
-    if (node.leaf) return i > 0 || node.importance(at) > 0 ? pmf : 0.f;
-    const float c0 = nodes_[i + 1].importance(at), c1 = nodes_[node.index].importance(at);
-    if (!(c0 + c1 > 0)) return 0;
-    const float p0 = c0 / (c0 + c1);
-    if (trail & 1)
-      i = node.index, pmf *= 1 - p0;
-    else
-      i = i + 1, pmf *= p0;
-    trail >>= 1;
+  const uint32_t place = place_[light];
+  if (place & kOutside) return place == kOutside ? 0.f : top_.pmf(place & ~kOutside);
+  // The lanes from the light up to the root, then their probabilities multiplied from the root
+  // down, as sample multiplies them.
+  std::array<uint32_t, 256> path;
+  int depth = 0;
+  for (uint32_t node = place / kWidth, lane = place % kWidth;; ++depth) {
+    path[size_t(depth)] = node * kWidth + lane;
+    if (node == 0) break;
+    lane = nodes_[node].parent_lane, node = nodes_[node].parent;
   }
+  float pmf = top_.pmf(0);
+  for (; depth >= 0; --depth) {
+    const uint32_t node = path[size_t(depth)] / kWidth, lane = path[size_t(depth)] % kWidth;
+    const std::array<float, kWidth> importance = nodes_[node].importance(at);
+    const float sum = total(importance);
+    if (!(sum > 0) || !(importance[lane] > 0)) return 0;
+    pmf *= importance[lane] / sum;
+  }
+  return pmf;
 }
 
 }  // namespace prism

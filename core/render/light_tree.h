@@ -1,13 +1,16 @@
 #pragma once
 // A light tree (Conty Estevez & Kulla, "Importance Sampling of Many Lights with Adaptive Tree
-// Splitting", HPG 2018; built and walked as pbrt-v4's BVHLightSampler, §12.6.3): a bounding volume
-// hierarchy over the lights whose nodes bound their lights' positions, power and emission cones
+// Splitting", HPG 2018; built as pbrt-v4's BVHLightSampler, §12.6.3): a bounding volume hierarchy
+// over the lights whose nodes bound their lights' positions, power and emission cones
 // (LightBounds). The light for a shading point is found by descending from the root, each child
 // taken with probability in proportion to its importance at the point; a light's probability at
 // any point is the product along its path from the root, so MIS with BSDF sampling stays exact.
+// The binary tree the cost model builds is collapsed to nodes of eight children, whose
+// importances are computed together (one vector pass per level, a third of the levels).
 // Infinite lights (directional, environment) stay outside the tree: the tree and each of them are
 // chosen first by power, as PowerLightSampler chooses.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -33,6 +36,8 @@ struct ShadingPoint {
 
 class LightTree {
  public:
+  static constexpr int kWidth = 8;
+
   LightTree() = default;
   // bounds[i] of light i, or none for an infinite light; power[i] as PowerLightSampler's. Lights
   // of zero power are left out: never chosen.
@@ -43,41 +48,35 @@ class LightTree {
   float pmf(const ShadingPoint& at, uint32_t light) const;
 
   size_t node_count() const { return nodes_.size(); }
-  size_t memory_bytes() const { return nodes_.size() * sizeof(Node) + trail_.size() * sizeof(uint64_t); }
+  size_t memory_bytes() const { return nodes_.size() * sizeof(Node) + place_.size() * sizeof(uint32_t); }
 
  private:
-  // A node's bounds as the importance reads them: the box's bounding sphere (44 bytes).
-  struct Node {
-    Vec3f centre;
-    float radius;
-    float phi;
-    Vec3f w;
-    float cos_theta_o, cos_theta_e;
-    uint32_t index : 30;  // a leaf's light, or an inner node's second child (its first follows it)
-    uint32_t leaf : 1, two_sided : 1;
+  // Eight children's bounds, lane by lane (an empty lane has no power), as the importance reads
+  // them: each child's bounding sphere, power, cone and emission angle.
+  struct alignas(32) Node {
+    std::array<float, kWidth> cx, cy, cz, radius, phi, wx, wy, wz, cos_o, sin_o, cos_e, two_sided;
+    std::array<uint32_t, kWidth> child;  // kLeaf | light, or a node
+    uint32_t parent, parent_lane;        // the node whose lane this node is (the root: none)
 
-    static Node make(const LightBounds& b, uint32_t index, bool leaf);
-    // An upper bound, up to a factor common to all nodes, of the light the node's emitters can
-    // bring to the point: phi · cos θ' / d², with θ' the least angle between an emitter's cone
-    // and the direction to the point over the sphere, times the cosine at the point likewise
-    // bounded when a normal is given (Conty Estevez & Kulla 2018, eq. 3; pbrt-v4 §12.6.3).
-    float importance(const ShadingPoint& at) const;
+    void set(int lane, const LightBounds& b, uint32_t child);
+    // Each lane's bound, up to a factor common to all nodes, of the light its emitters can bring
+    // to the point: phi · cos θ' / d², with θ' the least angle between an emitter's cone and the
+    // direction to the point over the sphere, times the cosine at the point likewise bounded when
+    // a normal is given (Conty Estevez & Kulla 2018, eq. 3; pbrt-v4 §12.6.3).
+    std::array<float, kWidth> importance(const ShadingPoint& at) const;
   };
-  struct Item {
-    uint32_t light;
-    LightBounds bounds;
-  };
-  // Nodes for items[begin, end) from nodes_.size() on: the first child follows its parent at once.
-  // `trail` holds the child taken at each depth so far, depth 0 in bit 0.
-  LightBounds build(std::vector<Item>& items, size_t begin, size_t end, uint64_t trail, int depth, int sah_depth);
+  static constexpr uint32_t kLeaf = 1u << 31;
 
-  PowerLightSampler top_;          // slot 0: the tree; then the infinite lights
+  struct Binary;  // the tree as built, before collapsing
+  void collapse(const std::vector<Binary>& binary, uint32_t root, uint32_t parent, uint32_t parent_lane);
+
+  PowerLightSampler top_;           // slot 0: the tree; then the infinite lights
   std::vector<uint32_t> infinite_;  // the light in top_'s slot 1 + i
-  std::vector<Node> nodes_;
-  // Per light in the tree, its path from the root as in build; for the others kOutside plus their
-  // top_ slot (0 for a light left out).
-  std::vector<uint64_t> trail_;
-  static constexpr uint64_t kOutside = uint64_t(1) << 63;  // no trail is that deep
+  std::vector<Node> nodes_;         // nodes_[0]: the root
+  // Per light in the tree, its node and lane (node · kWidth + lane); kOutside plus their top_ slot
+  // for the others (0 for a light left out).
+  std::vector<uint32_t> place_;
+  static constexpr uint32_t kOutside = 1u << 31;
 };
 
 }  // namespace prism

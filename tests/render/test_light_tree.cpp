@@ -191,7 +191,7 @@ TEST_CASE("direct light sampled through the light tree equals its brute-force in
   }
 }
 
-TEST_CASE("a light tree is built only where it can choose") {
+TEST_CASE("a light tree is built only where it has a choice to make") {
   Scene one;
   one.point_lights.push_back({"p", {0.f, 1.f, 0.f}, RgbIlluminantSpectrum(Rgb{1.f, 1.f, 1.f})});
   one.environment = RgbIlluminantSpectrum(Rgb{1.f, 1.f, 1.f});
@@ -199,6 +199,9 @@ TEST_CASE("a light tree is built only where it can choose") {
   one.point_lights.push_back({"q", {0.f, 2.f, 0.f}, RgbIlluminantSpectrum(Rgb{1.f, 1.f, 1.f})});
   CHECK(World(one, {}, LightSamplerKind::tree).light_sampler().tree() != nullptr);
   CHECK(World(one, {}, LightSamplerKind::power).light_sampler().tree() == nullptr);
+  CHECK(World(one, {}, LightSamplerKind::automatic).light_sampler().tree() == nullptr);  // two: power
+  one.point_lights.push_back({"r", {0.f, 3.f, 0.f}, RgbIlluminantSpectrum(Rgb{1.f, 1.f, 1.f})});
+  CHECK(World(one, {}, LightSamplerKind::automatic).light_sampler().tree() != nullptr);
 }
 
 namespace {
