@@ -30,7 +30,7 @@ PiecewiseConstant1D::Sample PiecewiseConstant1D::sample(float u) const {
   const float width = cdf_[o + 1] - cdf_[o];
   const float du = width > 0 ? clamp((u - cdf_[o]) / width, 0.f, 1.f) : 0.f;
   const float x = std::min(float((double(o) + du) / n), 0x1.fffffep-1f);
-  return {x, pdf(o), o};
+  return {x, pdf(o), o, du};
 }
 
 PiecewiseConstant2D::PiecewiseConstant2D(std::span<const float> f, int nu, int nv) {

@@ -21,6 +21,7 @@ class PiecewiseConstant1D {
     float x;    // in [0, 1)
     float pdf;  // f(x) / ∫f
     int bucket;
+    float within;  // x's place in its bucket, in [0, 1]
   };
   // Never lands in a bucket of f = 0 (unless all are).
   Sample sample(float u) const;

@@ -140,15 +140,12 @@ SampledSpectrum<N> connect_light(const BdptScene& scene, const SurfaceInteractio
   // The direct sample's solid-angle density (a point light's is d², a directional light's 1,
   // as its L is already divided by d²), the light's cosine, and the distance for absorption.
   float direct_pdf = s->pdf, cos_light = 1.f, distance = kInfinity;
-  if (const auto* a = std::get_if<AreaLight>(&light)) {
-    cos_light = abs_dot(a->n, s->wi);
-    distance = std::sqrt(s->pdf * cos_light * a->area);
-  } else if (const auto* p = std::get_if<PointLightSource>(&light)) {
+  if (const auto* a = std::get_if<AreaLight>(&light)) cos_light = abs_dot(a->n, s->wi), distance = s->distance; else if (const auto* p = std::get_if<PointLightSource>(&light)) {
     direct_pdf = length_squared(p->position - si.p), distance = std::sqrt(direct_pdf);
   } else if (const auto* sp = std::get_if<SpotLightSource>(&light)) {
     direct_pdf = length_squared(sp->point.position - si.p), distance = std::sqrt(direct_pdf);
   }
-  const float emission_pdf = pdf_le(light, -s->wi, scene.disk).product();
+  const float emission_pdf = pdf_le(light, -s->wi, scene.disk, s->density).product();
   const float bsdf_dir = is_delta(light) ? 0.f : e.pdf;
   const float w_light = mis(bsdf_dir / (pick * direct_pdf));
   const float w_camera = mis(emission_pick * emission_pdf * abs_dot(si.n, s->wi) / (pick * direct_pdf * cos_light)) *
@@ -273,9 +270,9 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, const SampledW
     if (material.emission) {
       const int index = world.area_light(si->instance, si->prim);
       const Light& light = world.lights()[index];
-      if (std::get<AreaLight>(light).emits_towards(si->wo)) {
+      if (const auto& area = std::get<AreaLight>(light); area.emits_towards(si->wo)) {
         const auto [pick, emission_pick] = picks(depth, uint32_t(index));
-        const EmissionPdf e = pdf_le(light, si->wo, scene.disk);
+        const EmissionPdf e = pdf_le(light, si->wo, scene.disk, area.density_at(si->p));
         add_emitted(depth, material.emitted(si->at, camera_lambda), pick * e.pdf_pos, emission_pick * e.product());
       }
     }

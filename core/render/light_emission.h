@@ -56,7 +56,7 @@ std::optional<EmissionSample<N>> sample_le(const Light& light, Vec2f u_pos, Vec2
   using Sample = std::optional<EmissionSample<N>>;
   if (const auto* a = std::get_if<AreaLight>(&light)) {
     // Uniform on the triangle, cosine-weighted about the emitting side (either, for two sides).
-    const auto [b, p, p_error] = a->sample_point(u_pos);
+    const auto [b, p, p_error, density] = a->sample_point(u_pos);
     Vec3f n = a->n;
     float side_pdf = 1.f;
     if (a->two_sided) {  // the side chosen by u_dir.x, as a BSDF chooses its lobe
@@ -69,7 +69,7 @@ std::optional<EmissionSample<N>> sample_le(const Light& light, Vec2f u_pos, Vec2
     const Vec3f w = Frame::from_z(n).to_world(local);
     const float pdf_dir = cosine_hemisphere_pdf(local.z) * side_pdf;
     if (!(pdf_dir > 0.f)) return std::nullopt;
-    return Sample{{a->radiance(b, lambda), spawn_ray(p, p_error, n, w), 1.f / a->area, pdf_dir, local.z}};
+    return Sample{{a->radiance(b, lambda), spawn_ray(p, p_error, n, w), density / a->area, pdf_dir, local.z}};
   }
   if (const auto* pt = std::get_if<PointLightSource>(&light))
     return Sample{{sample(*pt->intensity, lambda), Ray{pt->position, sample_uniform_sphere(u_dir), kInfinity}, 1.f,
@@ -101,11 +101,11 @@ std::optional<EmissionSample<N>> sample_le(const Light& light, Vec2f u_pos, Vec2
 }
 
 // The densities of sample_le emitting along w (unit, the way light travels) from the light's
-// point; for an area light, from a point of its surface.
-inline EmissionPdf pdf_le(const Light& light, const Vec3f& w, const SceneDisk& disk) {
+// point; for an area light, from a point of its surface of that density over the uniform one.
+inline EmissionPdf pdf_le(const Light& light, const Vec3f& w, const SceneDisk& disk, float density = 1) {
   if (const auto* a = std::get_if<AreaLight>(&light)) {
     if (!a->emits_towards(w)) return {0.f, 0.f};
-    return {1.f / a->area, cosine_hemisphere_pdf(abs_dot(a->n, w)) * (a->two_sided ? 0.5f : 1.f)};
+    return {density / a->area, cosine_hemisphere_pdf(abs_dot(a->n, w)) * (a->two_sided ? 0.5f : 1.f)};
   }
   if (std::holds_alternative<PointLightSource>(light)) return {1.f, uniform_sphere_pdf()};
   if (const auto* s = std::get_if<SpotLightSource>(&light)) {

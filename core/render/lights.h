@@ -13,6 +13,7 @@
 #include "core/base/warp.h"
 #include "core/render/environment_map.h"
 #include "core/render/interaction.h"
+#include "core/render/textured_emission.h"
 #include "core/scene/scene.h"
 #include "spectral/spectrum.h"
 
@@ -32,6 +33,8 @@ struct LightSample {
   Vec3f wi;
   float pdf;  // solid-angle density; 1 for a delta light
   Ray shadow_ray;
+  float distance = kInfinity;  // to an area light's point
+  float density = 1;           // an area light's: the point's density over the uniform one
 };
 
 // A light sample made in the optional its caller keeps (returned by NRVO), its shadow ray made in
@@ -58,6 +61,7 @@ struct AreaLight {
   const Mesh* mesh;  // triangle `prim` of it, for the texture coordinates and vertex colour
   uint32_t prim;
   bool two_sided;
+  const TexturedEmission* texels = nullptr;  // a textured emitter's: points sampled by their light
 
   template <int N>
   SampledSpectrum<N> radiance(const Vec3f& b, const SampledWavelengths<N>& lambda) const {
@@ -70,19 +74,38 @@ struct AreaLight {
 
   bool emits_towards(const Vec3f& w) const { return two_sided || dot(n, w) > 0; }
 
-  // pdf of sampling direction towards point `p_light` at distance d: d² / (|cos θ_light| · A).
-  float pdf_solid_angle(float distance, const Vec3f& w_to_light) const {
+  // pdf of sampling the direction towards a point at distance d, of the given density over the
+  // uniform one: density · d² / (|cos θ_light| · A).
+  float pdf_solid_angle(float distance, const Vec3f& w_to_light, float density = 1) const {
     const float cos_l = abs_dot(n, w_to_light);
-    return cos_l > 0 ? distance * distance / (cos_l * area) : 0.f;
+    return cos_l > 0 ? density * distance * distance / (cos_l * area) : 0.f;
+  }
+  // sample_point's density at a point p of the triangle, over the uniform one (1 untextured).
+  float density_at(const Vec3f& p) const { return texels ? texels->density(barycentrics(p)) : 1.f; }
+  Vec3f barycentrics(const Vec3f& p) const {
+    const Vec3f e1 = p1 - p0, e2 = p2 - p0, d = p - p0;
+    const float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2), d1 = dot(d, e1), d2 = dot(d, e2);
+    const float det = d11 * d22 - d12 * d12;
+    const float b1 = det != 0 ? (d22 * d1 - d12 * d2) / det : 0.f, b2 = det != 0 ? (d11 * d2 - d12 * d1) / det : 0.f;
+    return {1 - b1 - b2, b1, b2};
   }
 
-  // A point uniform on the triangle: its barycentrics b, position p and p's rounding bound.
+  // A point on the triangle, uniform or by a texture's light: its barycentrics b, position p, p's
+  // rounding bound, and its density over the uniform one.
   struct Point {
     Vec3f b, p, p_error;
+    float density;
   };
   Point sample_point(Vec2f u) const {
-    const Vec3f b = sample_uniform_triangle(u);
-    return {b, p0 * b.x + p1 * b.y + p2 * b.z, (abs(p0 * b.x) + abs(p1 * b.y) + abs(p2 * b.z)) * gamma(6)};
+    Vec3f b;
+    float density = 1;
+    if (texels) {
+      const auto s = texels->sample(u);
+      b = s.b, density = s.density;
+    } else {
+      b = sample_uniform_triangle(u);
+    }
+    return {b, p0 * b.x + p1 * b.y + p2 * b.z, (abs(p0 * b.x) + abs(p1 * b.y) + abs(p2 * b.z)) * gamma(6), density};
   }
 
   template <int N>
@@ -94,10 +117,12 @@ struct AreaLight {
     if (distance == 0.f) return std::nullopt;
     wi = wi / distance;
     if (!emits_towards(-wi)) return std::nullopt;
-    const float pdf = pdf_solid_angle(distance, wi);
+    const float pdf = pdf_solid_angle(distance, wi, q.density);
     if (!(pdf > 0.f) || std::isinf(pdf)) return std::nullopt;
-    return light_sample(radiance(q.b, lambda), wi, pdf,
-                        [&] { return spawn_ray_to(ctx.p, ctx.p_error, ctx.n, q.p, q.p_error, n); });
+    auto s = light_sample(radiance(q.b, lambda), wi, pdf,
+                          [&] { return spawn_ray_to(ctx.p, ctx.p_error, ctx.n, q.p, q.p_error, n); });
+    s->distance = distance, s->density = q.density;
+    return s;
   }
 };
 

@@ -109,7 +109,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
       const auto& area = std::get<AreaLight>(world.lights()[light]);
       if (area.emits_towards(si->wo))
         add_emitted(material.emitted(si->at, lambda) * alpha, light,
-                    [&] { return area.pdf_solid_angle(travelled + si->t, ray.d); });
+                    [&] { return area.pdf_solid_angle(travelled + si->t, ray.d, area.density_at(si->p)); });
     }
     // A fully clear BLEND texel is passed at once; past the last bounce, light beyond a BLEND
     // surface still counts: seen with probability 1 − α.

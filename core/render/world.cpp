@@ -10,6 +10,7 @@
 #include "core/base/error.h"
 #include "core/base/first_equal.h"
 #include "core/base/frame.h"
+#include "core/base/parallel.h"
 #include "core/base/rng.h"
 #include "materials/metal_fit.h"
 #include "spectral/cie.h"
@@ -115,38 +116,79 @@ void World::add_enclosures() {
                               : Enclosure{transform_bounds(inst.to_world, bounds[inst.mesh]), side[inst.mesh]});
 }
 
+// The distributions of a textured emitter's triangles, per mesh and triangle (null where one is
+// not worth having: a triangle of a texel or less), and each triangle's mean emitted luminance over
+// its untextured emission. The sub-triangles, about a texel each, are at most kBudget in all:
+// beyond that, fewer rows for every triangle alike.
+void World::add_texels() {
+  constexpr double kBudget = 1 << 22;
+  constexpr int kMaxRows = 128;
+  std::vector<std::pair<uint32_t, uint32_t>> triangles;  // (mesh, prim) of textured emitters
+  std::vector<float> footprint;
+  std::vector<bool> emits(scene_.meshes.size(), false);
+  for (const Instance& inst : scene_.instances) emits[inst.mesh] = true;
+  texel_mean_.resize(scene_.meshes.size());
+  texels_.resize(scene_.meshes.size());
+  double total = 0;
+  for (uint32_t m = 0; m < scene_.meshes.size(); ++m) {
+    const Mesh& mesh = scene_.meshes[m];
+    const Material& material = scene_.materials[mesh.material];
+    if (!emits[m] || !material.emission || !material.emission_texture) continue;
+    texel_mean_[m].assign(mesh.indices.size() / 3, 0.f);
+    texels_[m].resize(mesh.indices.size() / 3);
+    for (uint32_t p = 0; p < mesh.indices.size() / 3; ++p) {
+      triangles.emplace_back(m, p);
+      footprint.push_back(TexturedEmission::footprint(mesh, p, material));
+      total += std::min<double>(footprint.back(), kMaxRows * kMaxRows);
+    }
+  }
+  const double scale = total > kBudget ? kBudget / total : 1.0;
+  parallel_for(int64_t(triangles.size()), [&](int64_t t) {
+    const auto [m, p] = triangles[size_t(t)];
+    const Mesh& mesh = scene_.meshes[m];
+    const Material& material = scene_.materials[mesh.material];
+    const int k = std::clamp(int(std::ceil(2 * std::sqrt(footprint[size_t(t)] * scale))), 1, kMaxRows);
+    const std::vector<float> w = TexturedEmission::weights(mesh, p, material, k);
+    double sum = 0;
+    for (float x : w) sum += x;
+    texel_mean_[m][p] = float(sum / double(w.size()));
+    if (k > 1 && sum > 0) texels_[m][p] = std::make_unique<const TexturedEmission>(k, w);
+  });
+}
+
 void World::add_lights(LightSamplerKind light_sampler) {
   std::vector<float> powers;
   std::vector<std::optional<LightBounds>> bounds;  // of the finite lights, for a light tree
   std::vector<std::optional<float>> material_luminance(scene_.materials.size());  // once per emitting material
   instance_light_base_.assign(scene_.instances.size(), -1);
+  add_texels();
   for (uint32_t i = 0; i < scene_.instances.size(); ++i) {
     const Instance& inst = scene_.instances[i];
     const Mesh& mesh = scene_.meshes[inst.mesh];
     const Material& material = scene_.materials[mesh.material];
     if (!material.emission) continue;
-    const Texture* texture = material.emission_texture ? &*material.emission_texture : nullptr;
-    // Power by luminance; a textured emission counts with its texture's mean.
+    const bool textured = material.emission_texture.has_value();
+    // Power by luminance; a textured emission's triangle counts with its texels' mean (and its
+    // alpha coverage), texel_mean_.
     std::optional<float>& power_luminance = material_luminance[mesh.material];
     if (!power_luminance) {
       power_luminance = spectrum_to_xyz(*material.emission).y;
-      if (texture) {
-        const auto mean = texture->image->mean(true);
-        *power_luminance *= luminance({mean[0], mean[1], mean[2]});
-      }
-      // A BLEND surface emits alpha of its light: its factor's share (texture and vertex colours
+      // An untextured BLEND surface emits alpha of its light: its factor's share (vertex colours
       // left out; the power only steers light selection).
       const auto* pbr = std::get_if<PbrMaterial>(&material.kind);
-      if (pbr && material.alpha_mode == AlphaMode::blend) *power_luminance *= std::clamp(pbr->alpha, 0.f, 1.f);
+      if (!textured && pbr && material.alpha_mode == AlphaMode::blend)
+        *power_luminance *= std::clamp(pbr->alpha, 0.f, 1.f);
     }
     instance_light_base_[i] = int(lights_.size());
     for (uint32_t p = 0; p < mesh.indices.size() / 3; ++p) {
       const auto v = world_vertices(inst, p);
       const float area = triangle_area(v[0], v[1], v[2]);
       const Vec3f n = triangle_normal(v[0], v[1], v[2]) * (instance_normals_[i].mirrored ? -1.f : 1.f);
-      lights_.push_back(AreaLight{v[0], v[1], v[2], n, area, &material, &mesh, p, material.double_sided});
+      const TexturedEmission* texels = textured ? texels_[inst.mesh][p].get() : nullptr;
+      lights_.push_back(AreaLight{v[0], v[1], v[2], n, area, &material, &mesh, p, material.double_sided, texels});
       // Φ = π · A · L for a one-sided Lambertian emitter; luminance stands in for L.
-      powers.push_back(area > 0 ? kPi * area * *power_luminance * (material.double_sided ? 2.f : 1.f) : 0.f);
+      const float luminance = *power_luminance * (textured ? texel_mean_[inst.mesh][p] : 1.f);
+      powers.push_back(area > 0 ? kPi * area * luminance * (material.double_sided ? 2.f : 1.f) : 0.f);
       // Normals in one direction, each emitting over its hemisphere (θ_e = π/2).
       Bounds3f box;
       for (const Vec3f& q : v) box.extend(q);
