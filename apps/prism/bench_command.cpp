@@ -103,6 +103,7 @@ void add_bench_command(CLI::App& app) {
   cmd->callback([args] { run(*args); });
   add_bench_features_command(bench);
   add_bench_instances_command(bench);
+  add_bench_light_tree_command(bench);
 }
 
 }  // namespace prism

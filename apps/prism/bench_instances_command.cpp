@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 
 #include "apps/prism/commands.h"
+#include "apps/prism/resident_memory.h"
 #include "core/base/clock.h"
 #include "core/base/log.h"
 #include "core/base/parallel.h"
@@ -25,17 +25,6 @@ struct InstancesArgs {
   size_t count = 1'000'000;
   int triangles = 10'000, threads = 0;
 };
-
-// The process's resident set now and at its peak [MB] (Linux: /proc/self/status).
-std::pair<double, double> resident_mb() {
-  std::ifstream in("/proc/self/status");
-  double now = 0, peak = 0;
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("VmRSS:", 0) == 0) now = std::stod(line.substr(6)) / 1024;
-    if (line.rfind("VmHWM:", 0) == 0) peak = std::stod(line.substr(6)) / 1024;
-  }
-  return {now, peak};
-}
 
 // A closed, bumpy sphere of about `triangles` triangles (a latitude–longitude grid), radius ~1.
 Mesh tree_mesh(int triangles) {

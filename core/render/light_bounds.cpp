@@ -21,7 +21,17 @@ LightBounds merge(const LightBounds& a, const LightBounds& b) {
   m.phi = a.phi + b.phi;
   m.cos_theta_e = std::min(a.cos_theta_e, b.cos_theta_e);
   m.two_sided = a.two_sided || b.two_sided;
-  // The cone: one holds the other, or a cone of half the angles' sum about a direction between them.
+  // The cone: one holds the other (first the cheap cases: all directions, or the same axis), or a
+  // cone of half the angles' sum about a direction between them.
+  const bool same_axis = a.w == b.w;
+  if (a.cos_theta_o <= -1 || (same_axis && a.cos_theta_o <= b.cos_theta_o)) {
+    m.w = a.w, m.cos_theta_o = a.cos_theta_o;
+    return m;
+  }
+  if (b.cos_theta_o <= -1 || (same_axis && b.cos_theta_o <= a.cos_theta_o)) {
+    m.w = b.w, m.cos_theta_o = b.cos_theta_o;
+    return m;
+  }
   const float theta_a = safe_acos(a.cos_theta_o), theta_b = safe_acos(b.cos_theta_o);
   const float theta_d = safe_acos(dot(a.w, b.w));
   if (std::min(theta_d + theta_b, kPi) <= theta_a) {

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <tbb/parallel_invoke.h>
+
 #include "core/base/error.h"
 
 #ifdef __AVX__
@@ -51,14 +53,12 @@ void LightTree::Node::set(int lane, const LightBounds& b, uint32_t to) {
   // The box's circumsphere, widened by the rounding of the centre.
   const Vec3f far = max(abs(b.bounds.lo), abs(b.bounds.hi));
   radius[lane] = next_float_up(0.5f * length(b.bounds.diagonal()) + 1e-6f * std::max({far.x, far.y, far.z}));
-  phi[lane] = b.phi;
+  phi[lane] = b.two_sided ? -b.phi : b.phi;
   wx[lane] = b.w.x, wy[lane] = b.w.y, wz[lane] = b.w.z;
   // A margin for the rounding of merge's trigonometry: the cone only widens.
   const float theta_o = safe_acos(b.cos_theta_o) + 1e-4f;
   cos_o[lane] = theta_o >= kPi ? -1.f : std::cos(theta_o);
-  sin_o[lane] = theta_o >= kPi ? 0.f : std::sin(theta_o);
   cos_e[lane] = b.cos_theta_e;
-  two_sided[lane] = b.two_sided ? 1.f : 0.f;
   child[lane] = to;
 }
 
@@ -105,15 +105,16 @@ std::array<float, LightTree::kWidth> LightTree::Node::importance(const ShadingPo
   const Lanes sin_b = outside ? r * inv_d : zero;
   const Lanes cos_b = outside ? sqrt(max(zero, one - sin_b * sin_b)) : -one;
   const Lanes d2 = max(outside ? d2_centre : r * r, splat(1e-30f));
+  const Lanes power = load(phi);
   const Lanes cos_w_signed = w_x * wix + w_y * wiy + w_z * wiz;
-  const Lanes cos_w = load(two_sided) != 0 ? abs(cos_w_signed) : cos_w_signed;
+  const Lanes cos_w = power < 0 ? abs(cos_w_signed) : cos_w_signed;  // two-sided
   const Lanes sin_w = sqrt(max(zero, one - cos_w * cos_w));
   // θ' = max(0, θ_w − θ_o − θ_b), as cos(max(0, a − b)) = 1 if a < b, else cos a cos b + sin a sin b.
-  const Lanes co = load(cos_o), so = load(sin_o);
+  const Lanes co = load(cos_o), so = sqrt(max(zero, one - co * co));
   const auto within = cos_w > co;
   const Lanes cos_x = within ? one : cos_w * co + sin_w * so, sin_x = within ? zero : sin_w * co - cos_w * so;
   const Lanes cos_p = cos_x > cos_b ? one : cos_x * cos_b + sin_x * sin_b;
-  Lanes importance = load(phi) * cos_p / d2;
+  Lanes importance = abs(power) * cos_p / d2;
   if (at.n != Vec3f(0.f, 0.f, 0.f)) {  // the cosine at the point, bounded likewise
     const Lanes dot_n = wix * at.n.x + wiy * at.n.y + wiz * at.n.z;
     const Lanes cos_i = at.hemisphere ? -dot_n : abs(dot_n);
@@ -143,7 +144,7 @@ struct LightTree::Binary {
   LightBounds bounds;
   uint32_t first = 0, second = 0;  // children (an inner node)
   uint32_t light = 0;              // a leaf's
-  bool leaf = false;
+  uint32_t lights = 1;             // below it
 };
 
 namespace {
@@ -153,18 +154,20 @@ struct Item {
   LightBounds bounds;
 };
 
-// The binary tree over items[begin, end), appended to `nodes`; returns its root's index. Below
-// depth `sah_depth` the splits halve by count, which bounds the depth (and the recursion).
+// The binary tree over items[begin, end) in nodes[base, base + 2 (end − begin) − 1): its root at
+// base, then its first child's subtree, then its second's, so that subtrees are built apart, the
+// large ones in parallel, always alike. Below depth kSahDepth the splits halve by count, which
+// bounds the depth (and the recursion).
 template <class Binary>
-uint32_t build_binary(std::vector<Item>& items, size_t begin, size_t end, int depth, std::vector<Binary>& nodes) {
+void build_binary(std::vector<Item>& items, size_t begin, size_t end, size_t base, int depth,
+                  std::vector<Binary>& nodes) {
   constexpr int kSahDepth = 64;
-  const uint32_t index = uint32_t(nodes.size());
-  nodes.emplace_back();
+  Binary& node = nodes[base];
+  node.lights = uint32_t(end - begin);
   if (end - begin == 1) {
-    nodes[index].bounds = items[begin].bounds;
-    nodes[index].light = items[begin].light;
-    nodes[index].leaf = true;
-    return index;
+    node.bounds = items[begin].bounds;
+    node.light = items[begin].light;
+    return;
   }
   Bounds3f box, centroids;
   for (size_t i = begin; i < end; ++i) {
@@ -180,24 +183,34 @@ uint32_t build_binary(std::vector<Item>& items, size_t begin, size_t end, int de
     const int b = int(kBuckets * ((item.bounds.bounds.centroid()[axis] - centroids.lo[axis]) / extent));
     return std::clamp(b, 0, kBuckets - 1);
   };
-  for (int axis = 0; axis < 3 && depth < kSahDepth; ++axis) {
-    if (!(centroids.hi[axis] > centroids.lo[axis])) continue;
+  // Each axis's best split (its cost and bucket), the axes of a large range in parallel.
+  std::array<std::pair<float, int>, 3> split;
+  const auto best_along = [&](int axis) {
+    split[size_t(axis)] = {kInfinity, -1};
+    if (!(centroids.hi[axis] > centroids.lo[axis]) || depth >= kSahDepth) return;
     std::array<LightBounds, kBuckets> bucket{};
     for (size_t i = begin; i < end; ++i) {
-      LightBounds& b = bucket[bucket_of(items[i], axis)];
+      LightBounds& b = bucket[size_t(bucket_of(items[i], axis))];
       b = merge(b, items[i].bounds);
     }
     std::array<LightBounds, kBuckets> below{};  // buckets [0, i]
     below[0] = bucket[0];
-    for (int i = 1; i < kBuckets; ++i) below[i] = merge(below[i - 1], bucket[i]);
+    for (size_t i = 1; i < kBuckets; ++i) below[i] = merge(below[i - 1], bucket[i]);
     LightBounds above;  // buckets (i, kBuckets)
     for (int i = kBuckets - 2; i >= 0; --i) {
-      above = merge(above, bucket[i + 1]);
-      if (below[i].phi == 0 || above.phi == 0) continue;
-      const float cost = split_cost(below[i], box, axis) + split_cost(above, box, axis);
-      if (cost < best_cost) best_cost = cost, best_axis = axis, best_bucket = i;
+      above = merge(above, bucket[size_t(i) + 1]);
+      if (below[size_t(i)].phi == 0 || above.phi == 0) continue;
+      const float cost = split_cost(below[size_t(i)], box, axis) + split_cost(above, box, axis);
+      if (cost < split[size_t(axis)].first) split[size_t(axis)] = {cost, i};
     }
-  }
+  };
+  if (end - begin > 65536)
+    tbb::parallel_invoke([&] { best_along(0); }, [&] { best_along(1); }, [&] { best_along(2); });
+  else
+    for (int axis = 0; axis < 3; ++axis) best_along(axis);
+  for (int axis = 0; axis < 3; ++axis)
+    if (split[size_t(axis)].first < best_cost)
+      best_cost = split[size_t(axis)].first, best_axis = axis, best_bucket = split[size_t(axis)].second;
   size_t mid = (begin + end) / 2;
   if (best_axis >= 0) {
     mid = size_t(std::partition(items.begin() + ptrdiff_t(begin), items.begin() + ptrdiff_t(end),
@@ -214,11 +227,15 @@ uint32_t build_binary(std::vector<Item>& items, size_t begin, size_t end, int de
                        return a.bounds.bounds.centroid()[axis] < b.bounds.bounds.centroid()[axis];
                      });
   }
-  const uint32_t first = build_binary(items, begin, mid, depth + 1, nodes);
-  const uint32_t second = build_binary(items, mid, end, depth + 1, nodes);
-  nodes[index].first = first, nodes[index].second = second;
-  nodes[index].bounds = merge(nodes[first].bounds, nodes[second].bounds);
-  return index;
+  const size_t first = base + 1, second = base + 2 * (mid - begin);
+  const auto build_first = [&] { build_binary(items, begin, mid, first, depth + 1, nodes); };
+  const auto build_second = [&] { build_binary(items, mid, end, second, depth + 1, nodes); };
+  if (end - begin > 4096)
+    tbb::parallel_invoke(build_first, build_second);
+  else
+    build_first(), build_second();
+  node.first = uint32_t(first), node.second = uint32_t(second);
+  node.bounds = merge(nodes[first].bounds, nodes[second].bounds);
 }
 
 }  // namespace
@@ -240,43 +257,38 @@ LightTree::LightTree(std::span<const std::optional<LightBounds>> bounds, std::sp
   top_ = PowerLightSampler(top_power);
   if (items.empty()) return;
   if (items.size() >= (1u << 27)) fail("more than 2^27 emitters for the light tree");
-  std::vector<Binary> binary;
-  binary.reserve(2 * items.size() - 1);
-  const uint32_t root = build_binary(items, 0, items.size(), 0, binary);
-  nodes_.reserve(2 * items.size() / (kWidth - 1) + 1);
-  collapse(binary, root, 0, 0);
+  std::vector<Binary> binary(2 * items.size() - 1);
+  build_binary(items, 0, items.size(), 0, 0, binary);
+  collapse(binary, 0, 0);
 }
 
-// The node whose lanes are the binary tree's nodes below `root`, up to eight: the widest of them
-// opened while there is room. Lanes that stay empty have no power and an emission angle no point
-// is within (cos θ_e = 2).
-void LightTree::collapse(const std::vector<Binary>& binary, uint32_t root, uint32_t parent, uint32_t parent_lane) {
+// The node whose lanes are the binary tree's nodes below `root`, up to eight: the one with the most
+// lights below it opened while there is room. Lanes that stay empty have no power and an emission
+// angle no point is within (cos θ_e = 2).
+void LightTree::collapse(const std::vector<Binary>& binary, uint32_t root, uint32_t parent_lane) {
   const uint32_t index = uint32_t(nodes_.size());
   nodes_.emplace_back();
-  Node& made = nodes_[index];
-  made.parent = parent, made.parent_lane = parent_lane;
+  parent_.push_back(parent_lane);
   const LightBounds empty{Bounds3f{{0.f, 0.f, 0.f}, {0.f, 0.f, 0.f}}, {0.f, 0.f, 1.f}, 0.f, 1.f, 2.f};
-  for (int lane = 0; lane < kWidth; ++lane) made.set(lane, empty, kLeaf);
+  for (int lane = 0; lane < kWidth; ++lane) nodes_[index].set(lane, empty, kLeaf);
   std::vector<uint32_t> lanes{root};
-  for (;;) {
-    int widest = -1;
-    float widest_area = -1;
-    for (size_t i = 0; i < lanes.size(); ++i)
-      if (const Binary& b = binary[lanes[i]]; !b.leaf && surface_area(b.bounds.bounds) > widest_area)
-        widest = int(i), widest_area = surface_area(b.bounds.bounds);
-    if (widest < 0 || lanes.size() + 1 > size_t(kWidth)) break;
-    const Binary& open = binary[lanes[size_t(widest)]];
-    lanes[size_t(widest)] = open.first;
+  while (lanes.size() < size_t(kWidth)) {
+    size_t fullest = 0;
+    for (size_t i = 1; i < lanes.size(); ++i)
+      if (binary[lanes[i]].lights > binary[lanes[fullest]].lights) fullest = i;
+    const Binary& open = binary[lanes[fullest]];
+    if (open.lights == 1) break;
+    lanes[fullest] = open.first;
     lanes.push_back(open.second);
   }
   for (int lane = 0; lane < int(lanes.size()); ++lane) {
     const Binary& b = binary[lanes[size_t(lane)]];
-    if (b.leaf) {
+    if (b.lights == 1) {
       nodes_[index].set(lane, b.bounds, kLeaf | b.light);
       place_[b.light] = index * kWidth + uint32_t(lane);
     } else {
       nodes_[index].set(lane, b.bounds, uint32_t(nodes_.size()));
-      collapse(binary, lanes[size_t(lane)], index, uint32_t(lane));
+      collapse(binary, lanes[size_t(lane)], index * kWidth + uint32_t(lane));
     }
   }
 }
@@ -324,7 +336,7 @@ float LightTree::pmf(const ShadingPoint& at, uint32_t light) const {
   for (uint32_t node = place / kWidth, lane = place % kWidth;; ++depth) {
     path[size_t(depth)] = node * kWidth + lane;
     if (node == 0) break;
-    lane = nodes_[node].parent_lane, node = nodes_[node].parent;
+    lane = parent_[node] % kWidth, node = parent_[node] / kWidth;
   }
   float pmf = top_.pmf(0);
   for (; depth >= 0; --depth) {

@@ -48,15 +48,17 @@ class LightTree {
   float pmf(const ShadingPoint& at, uint32_t light) const;
 
   size_t node_count() const { return nodes_.size(); }
-  size_t memory_bytes() const { return nodes_.size() * sizeof(Node) + place_.size() * sizeof(uint32_t); }
+  size_t memory_bytes() const {
+    return nodes_.size() * (sizeof(Node) + sizeof(uint32_t)) + place_.size() * sizeof(uint32_t);
+  }
 
  private:
-  // Eight children's bounds, lane by lane (an empty lane has no power), as the importance reads
-  // them: each child's bounding sphere, power, cone and emission angle.
+  // Eight children's bounds, lane by lane, as the importance reads them: each child's bounding
+  // sphere, power (negative for two-sided emitters), cone and emission angle (352 bytes). An
+  // empty lane has no power.
   struct alignas(32) Node {
-    std::array<float, kWidth> cx, cy, cz, radius, phi, wx, wy, wz, cos_o, sin_o, cos_e, two_sided;
+    std::array<float, kWidth> cx, cy, cz, radius, phi, wx, wy, wz, cos_o, cos_e;
     std::array<uint32_t, kWidth> child;  // kLeaf | light, or a node
-    uint32_t parent, parent_lane;        // the node whose lane this node is (the root: none)
 
     void set(int lane, const LightBounds& b, uint32_t child);
     // Each lane's bound, up to a factor common to all nodes, of the light its emitters can bring
@@ -68,11 +70,12 @@ class LightTree {
   static constexpr uint32_t kLeaf = 1u << 31;
 
   struct Binary;  // the tree as built, before collapsing
-  void collapse(const std::vector<Binary>& binary, uint32_t root, uint32_t parent, uint32_t parent_lane);
+  void collapse(const std::vector<Binary>& binary, uint32_t root, uint32_t parent_lane);
 
   PowerLightSampler top_;           // slot 0: the tree; then the infinite lights
   std::vector<uint32_t> infinite_;  // the light in top_'s slot 1 + i
   std::vector<Node> nodes_;         // nodes_[0]: the root
+  std::vector<uint32_t> parent_;    // per node, the lane it is (node · kWidth + lane; the root: 0)
   // Per light in the tree, its node and lane (node · kWidth + lane); kOutside plus their top_ slot
   // for the others (0 for a light left out).
   std::vector<uint32_t> place_;

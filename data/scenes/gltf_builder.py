@@ -6,6 +6,7 @@ import base64
 import json
 import math
 import struct
+import zlib
 
 # ---------------------------------------------------------------- vectors
 def add(a, b): return tuple(x + y for x, y in zip(a, b))
@@ -223,10 +224,19 @@ def spot_light(name, position, target, intensity, outer_deg, inner_deg):
 def f32(v):
     return struct.unpack("<f", struct.pack("<f", v))[0]
 
-def build_gltf(objects, camera, generator, copyright, scene_name, root=None, lights=()):
+def png(width, height, rows):
+    """An 8-bit RGB PNG file of `rows` (top first), each a list of (r, g, b) bytes."""
+    raw = b"".join(b"\x00" + bytes(c for px in row for c in px) for row in rows)
+    def chunk(tag, data):
+        return struct.pack(">I", len(data)) + tag + data + struct.pack(">I", zlib.crc32(tag + data) & 0xFFFFFFFF)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+def build_gltf(objects, camera, generator, copyright, scene_name, root=None, lights=(), images=()):
     """One self-contained glTF: a mesh and node per object, the camera, the punctual lights, all
     under an optional root node (a dict with "translation" and/or "scale") that moves or scales
-    the whole scene."""
+    the whole scene. `images` are PNG files, texture i for image i (a material names it as
+    {"index": i}); a mesh's "uvs" become its TEXCOORD_0."""
     blob = bytearray()
     g = {"asset": {"version": "2.0", "generator": generator, "copyright": copyright},
          "scene": 0, "scenes": [{"name": scene_name, "nodes": []}], "nodes": [], "meshes": [],
@@ -256,6 +266,8 @@ def build_gltf(objects, camera, generator, copyright, scene_name, root=None, lig
                     "NORMAL": accessor(mesh["normals"], "f", 5126, "VEC3", 34962)},
                 "indices": accessor(mesh["indices"], "I", 5125, "SCALAR", 34963),
                 "material": mat_index[mat["name"]], "mode": 4}
+        if "uvs" in mesh:
+            prim["attributes"]["TEXCOORD_0"] = accessor(mesh["uvs"], "f", 5126, "VEC2", 34962)
         if "tangents" in mesh:  # xyz and the bitangent's sign, for anisotropy or normal maps
             prim["attributes"]["TANGENT"] = accessor(mesh["tangents"], "f", 5126, "VEC4", 34962)
         g["meshes"].append({"name": name, "primitives": [prim]})
@@ -270,6 +282,10 @@ def build_gltf(objects, camera, generator, copyright, scene_name, root=None, lig
             {k: v for k, v in light.items() if k not in ("translation", "rotation")})
         g["nodes"].append({"name": light["name"], "translation": light["translation"], "rotation": light["rotation"],
                            "extensions": {"KHR_lights_punctual": {"light": i}}})
+    for i, image in enumerate(images):
+        g.setdefault("samplers", [{"magFilter": 9729, "minFilter": 9729}])
+        g.setdefault("images", []).append({"uri": "data:image/png;base64," + base64.b64encode(image).decode("ascii")})
+        g.setdefault("textures", []).append({"source": i, "sampler": 0})
     if root is None:
         g["scenes"][0]["nodes"] = list(range(len(g["nodes"])))
     else:
