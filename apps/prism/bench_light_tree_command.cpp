@@ -49,8 +49,8 @@ void run(const LightTreeArgs& args) {
 
   // The cost of a choice, at random points with random normals (one-sided receivers).
   std::vector<ShadingPoint> points(size_t(args.queries));
-  for (ShadingPoint& p : points) p = {Vec3f(100 * rng.uniform(), 100 * rng.uniform(), 100 * rng.uniform()),
-                                      random_unit(rng), true};
+  for (ShadingPoint& p : points)
+    p = {Vec3f(100 * rng.uniform(), 100 * rng.uniform(), 100 * rng.uniform()), random_unit(rng), true};
   double checksum = 0;
   auto t1 = std::chrono::steady_clock::now();
   std::vector<uint32_t> chosen(points.size(), 0);
@@ -65,9 +65,10 @@ void run(const LightTreeArgs& args) {
   for (size_t i = 0; i < points.size(); ++i) checksum += by_power.pmf(by_power.sample(rng.uniform()));
   const double power_ns = 1e9 * seconds_since(t1) / double(points.size());
 
-  log::info("a light tree over {} triangles: built in {:.2f} s, {} nodes, {:.1f} MB (peak resident {:.0f} MB, {:.0f} "
-            "before)",
-            args.lights, build_s, tree.node_count(), tree.memory_bytes() / 1e6, peak_mb, before_peak_mb);
+  log::info(
+      "a light tree over {} triangles: built in {:.2f} s, {} nodes, {:.1f} MB (peak resident {:.0f} MB, {:.0f} "
+      "before)",
+      args.lights, build_s, tree.node_count(), tree.memory_bytes() / 1e6, peak_mb, before_peak_mb);
   log::info("a choice: sample {:.0f} ns, pmf {:.0f} ns; power sampling {:.0f} ns (checksum {:.3g})", sample_ns, pmf_ns,
             power_ns, checksum);
   std::printf(

@@ -7,6 +7,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
 
 #include "apps/prism/commands.h"
 #include "apps/prism/image_errors.h"
@@ -25,7 +28,8 @@ struct ConvergeArgs {
   std::string reference, out;
   int max_spp = 256, reference_spp = 4096, max_depth = 16, threads = 0;
   uint64_t seed = 0;
-  std::vector<std::string> integrators;  // one configuration each (default: the baseline and its variations)
+  std::vector<std::string> integrators;     // one configuration each (default: the baseline and its variations)
+  std::vector<std::string> light_samplers;  // or one configuration each, path traced
   std::string reference_integrator = "path";
   double seconds = 0;  // equal-time comparison: each configuration renders this long
 };
@@ -33,6 +37,7 @@ struct ConvergeArgs {
 struct Configuration {
   std::string name;
   RenderOptions options;
+  std::optional<LightSamplerKind> light_sampler = std::nullopt;  // the scene options' if none
 };
 
 // The baseline (the defaults: path tracing, 8 wavelengths, NEE + MIS, Sobol samples) and one change
@@ -43,6 +48,13 @@ std::vector<Configuration> configurations(const ConvergeArgs& args) {
   base.threads = args.threads;
   base.seed = args.seed;
   base.progress = false;
+  if (!args.light_samplers.empty()) {
+    std::vector<Configuration> c;
+    for (const std::string& name : args.light_samplers)
+      for (const LightSamplerInfo& l : kLightSamplers)
+        if (l.name == name) c.push_back({"path, light sampler " + name, base, l.kind});
+    return c;
+  }
   if (!args.integrators.empty()) {
     std::vector<Configuration> c;
     for (const std::string& name : args.integrators) {
@@ -69,8 +81,26 @@ std::vector<Configuration> configurations(const ConvergeArgs& args) {
   return c;
 }
 
-std::vector<float> render_rgb(const PreparedScene& p, const RenderOptions& options, RenderStats* stats = nullptr) {
-  const RenderResult r = render(*p.world, *p.camera, options);
+// The scene made ready with each light sampler a configuration asks for (the scene options' is p's).
+class Worlds {
+ public:
+  Worlds(const PreparedScene& p, const SceneArgs& args) : p_(p), args_(args) {}
+  const World& operator()(const Configuration& c) {
+    if (!c.light_sampler || *c.light_sampler == args_.light_sampler) return *p_.world;
+    auto& w = made_[*c.light_sampler];
+    if (!w) w = std::make_unique<World>(p_.gltf->scene(), AccelOptions{}, *c.light_sampler);
+    return *w;
+  }
+
+ private:
+  const PreparedScene& p_;
+  const SceneArgs& args_;
+  std::map<LightSamplerKind, std::unique_ptr<World>> made_;
+};
+
+std::vector<float> render_rgb(const World& world, const PreparedScene& p, const RenderOptions& options,
+                              RenderStats* stats = nullptr) {
+  const RenderResult r = render(world, *p.camera, options);
   std::vector<float> rgb = r.state.film.xyz_image();
   ColorPipeline::standard().convert(ColorPipeline::kXyz, ColorPipeline::kDefaultOutput, rgb.data(), rgb.size() / 3);
   if (stats) *stats = r.stats();
@@ -94,7 +124,7 @@ std::vector<float> reference_image(const ConvergeArgs& args, const PreparedScene
   options.seed = args.seed + 1;  // independent of the series' noise
   log::info("rendering the reference {} at {} spp ({})", args.reference, args.reference_spp, args.reference_integrator);
   RenderStats stats;
-  std::vector<float> rgb = render_rgb(p, options, &stats);
+  std::vector<float> rgb = render_rgb(*p.world, p, options, &stats);
   write_exr(args.reference,
             {camera.width(),
              camera.height(),
@@ -140,9 +170,11 @@ double mse_per_doubling(const std::vector<Point>& series) {
 void run_equal_time(const ConvergeArgs& args, const PreparedScene& p, const std::vector<float>& reference,
                     double reference_mean) {
   const auto configs = configurations(args);
+  Worlds worlds(p, args.scene);
+  for (const Configuration& config : configs) worlds(config);  // built before any timing
   RenderOptions warm_up = configs[0].options;
   warm_up.spp = 1;
-  render_rgb(p, warm_up);  // untimed: one-time set-up (tables, threads) is no configuration's cost
+  render_rgb(worlds(configs[0]), p, warm_up);  // untimed: one-time set-up (tables, threads) is no configuration's cost
   std::ofstream csv(std::filesystem::path(args.out) / "equal_time.csv");
   csv << "configuration,seconds,spp,relative_rmse,relative_rmse_at_budget,mean_error\n";
   const double pixels = double(p.camera->width()) * p.camera->height();
@@ -160,7 +192,7 @@ void run_equal_time(const ConvergeArgs& args, const PreparedScene& p, const std:
     options.spp = 1 << 20;
     options.time_limit = args.seconds;
     RenderStats stats;
-    const ImageErrors e = image_errors(render_rgb(p, options, &stats), reference);
+    const ImageErrors e = image_errors(render_rgb(worlds(config), p, options, &stats), reference);
     const double relative = e.rmse / reference_mean;
     scaled.push_back(relative * std::sqrt(stats.seconds / args.seconds));
     const double spp = double(stats.samples) / pixels;
@@ -191,14 +223,17 @@ void run(const ConvergeArgs& args) {
   csv << "configuration,spp,seconds,rmse,relative_mse,mean_error\n";
   std::vector<std::vector<Point>> series;
   const auto configs = configurations(args);
-  render_rgb(p, configs[0].options);  // untimed: one-time set-up (tables, threads) is no configuration's cost
+  Worlds worlds(p, args.scene);
+  for (const Configuration& config : configs) worlds(config);  // built before any timing
+  render_rgb(worlds(configs[0]), p,
+             configs[0].options);  // untimed: one-time set-up (tables, threads) is no configuration's cost
   for (const Configuration& config : configs) {
     series.emplace_back();
     for (int spp = 1; spp <= args.max_spp; spp *= 2) {
       RenderOptions options = config.options;
       options.spp = spp;
       RenderStats stats;
-      const ImageErrors e = image_errors(render_rgb(p, options, &stats), reference);
+      const ImageErrors e = image_errors(render_rgb(worlds(config), p, options, &stats), reference);
       series.back().push_back({spp, stats.seconds, e});
       csv << '"' << config.name << "\"," << spp << ',' << stats.seconds << ',' << e.rmse << ',' << e.relative_mse << ','
           << e.mean_error << '\n';
@@ -272,6 +307,18 @@ void add_converge_command(CLI::App& app) {
                   "baseline and its variations")
       ->delimiter(',')
       ->check(integrator_validator(false));
+  std::string samplers;
+  for (const LightSamplerInfo& l : kLightSamplers) samplers += (samplers.empty() ? "" : ", ") + std::string(l.name);
+  CLI::Option* light_samplers =
+      cmd->add_option("--light-samplers", args->light_samplers,
+                      "Compare these light samplers (comma-separated: " + samplers + "), path traced, instead")
+          ->delimiter(',')
+          ->check([](const std::string& name) {
+            for (const LightSamplerInfo& l : kLightSamplers)
+              if (l.name == name) return std::string();
+            return fmt::format("unknown light sampler '{}'", name);
+          });
+  light_samplers->excludes(cmd->get_option("--integrators"));
   cmd->add_option("--reference-integrator", args->reference_integrator,
                   "Integrator of a reference this command renders (vcm for caustics)")
       ->default_val("path")

@@ -75,7 +75,8 @@ void trace_light_path(const BdptScene& scene, SampledWavelengths<N>& lambda, Sam
     if (!si) break;
     if (scene.media) beta *= media.transmittance(si->t, lambda);
     m.arrive(si->t, abs_dot(si->n, si->wo), length > 1 || finite);
-    if (length == 1) m.vcm *= mis(world.light_sampler().pmf(LightSampleContext{si->p, si->p_error, si->n}, index) / pick);
+    if (length == 1)
+      m.vcm *= mis(world.light_sampler().pmf(LightSampleContext{si->p, si->p_error, si->n}, index) / pick);
     const Material& material = *si->material;
     const bool entering = si->front_face();
     const Dielectric* front = scene.media ? media.front_dielectric(material, entering) : nullptr;
@@ -140,7 +141,9 @@ SampledSpectrum<N> connect_light(const BdptScene& scene, const SurfaceInteractio
   // The direct sample's solid-angle density (a point light's is d², a directional light's 1,
   // as its L is already divided by d²), the light's cosine, and the distance for absorption.
   float direct_pdf = s->pdf, cos_light = 1.f, distance = kInfinity;
-  if (const auto* a = std::get_if<AreaLight>(&light)) cos_light = abs_dot(a->n, s->wi), distance = s->distance; else if (const auto* p = std::get_if<PointLightSource>(&light)) {
+  if (const auto* a = std::get_if<AreaLight>(&light))
+    cos_light = abs_dot(a->n, s->wi), distance = s->distance;
+  else if (const auto* p = std::get_if<PointLightSource>(&light)) {
     direct_pdf = length_squared(p->position - si.p), distance = std::sqrt(direct_pdf);
   } else if (const auto* sp = std::get_if<SpotLightSource>(&light)) {
     direct_pdf = length_squared(sp->point.position - si.p), distance = std::sqrt(direct_pdf);
@@ -261,7 +264,8 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, const SampledW
       if (const Light* env = world.environment()) {
         const auto [pick, emission_pick] = picks(depth, uint32_t(world.environment_light()));
         const float pdf = environment_pdf(*env, ray.d);
-        add_emitted(depth, environment_Le(*env, ray.d, camera_lambda), pick * pdf, emission_pick * pdf * scene.disk.pdf());
+        add_emitted(depth, environment_Le(*env, ray.d, camera_lambda), pick * pdf,
+                    emission_pick * pdf * scene.disk.pdf());
       }
       break;
     }

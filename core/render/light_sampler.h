@@ -41,8 +41,7 @@ class LightSampler {
   LightSampler() = default;
   // Light i's power[i] and, for a finite light, its bounds[i]. A tree is built only where it has a
   // choice to make: for two finite lights or more (three for auto).
-  LightSampler(LightSamplerKind kind, std::span<const std::optional<LightBounds>> bounds,
-               std::span<const float> power)
+  LightSampler(LightSamplerKind kind, std::span<const std::optional<LightBounds>> bounds, std::span<const float> power)
       : power_(std::vector<float>(power.begin(), power.end())) {
     size_t finite = 0;
     for (const auto& b : bounds) finite += b.has_value();

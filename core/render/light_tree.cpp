@@ -1,12 +1,12 @@
 #include "core/render/light_tree.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
-
-#include <tbb/parallel_invoke.h>
 
 #include "core/base/error.h"
 

@@ -31,8 +31,8 @@ float TexturedEmission::footprint(const Mesh& mesh, uint32_t prim, const Materia
   if (uv.empty()) return 0;
   const Vec2f a = uv[mesh.indices[3 * prim]], b = uv[mesh.indices[3 * prim + 1]], c = uv[mesh.indices[3 * prim + 2]];
   const Vec2f e1 = b - a, e2 = c - a;
-  const float texels = 0.5f * std::abs(e1.x * e2.y - e1.y * e2.x) * float(texture.image->width()) *
-                       float(texture.image->height());
+  const float texels =
+      0.5f * std::abs(e1.x * e2.y - e1.y * e2.x) * float(texture.image->width()) * float(texture.image->height());
   return std::isfinite(texels) ? texels : 0.f;
 }
 

@@ -116,6 +116,34 @@ TEST_CASE("prism converge writes the error table, the plot and the summary") {
                         (dir / "ref.exr").string() + "\" --out \"" + dir.string() + "\"") == 1);
 }
 
+TEST_CASE("prism converge --light-samplers compares light samplers, and the header records the one rendered with") {
+  const auto dir = test::temp_dir("converge_light_samplers");
+  const std::string scene = "\"" PRISM_SOURCE_DIR "/data/scenes/lamp_hall.gltf\"";
+  std::string err;
+  int code = test::run_prism("converge " + scene + " --width 16 --height 9 --max-spp 2 --reference-spp 4 " +
+                                 "--light-samplers power,tree --reference \"" + (dir / "ref.exr").string() +
+                                 "\" --out \"" + dir.string() + "\"",
+                             &err);
+  INFO(err);
+  REQUIRE(code == 0);
+  std::ifstream md(dir / "summary.md");
+  std::stringstream summary;
+  summary << md.rdbuf();
+  CHECK(summary.str().find("light sampler power") != std::string::npos);
+  CHECK(summary.str().find("light sampler tree") != std::string::npos);
+  CHECK(test::run_prism("converge " + scene + " --width 16 --height 9 --light-samplers power,nearest --reference \"" +
+                        (dir / "ref.exr").string() + "\" --out \"" + dir.string() + "\"") == 2);
+  // A render logs the tree it built and names the sampler in the header.
+  const auto out = dir / "hall.exr";
+  code = test::run_prism("render " + scene + " --width 16 --height 9 --spp 1 -o \"" + out.string() + "\"", &err);
+  REQUIRE(code == 0);
+  CHECK(err.find("light tree:") != std::string::npos);
+  Imf::InputFile in(out.c_str());
+  const auto* sampler = in.header().findTypedAttribute<Imf::StringAttribute>("prism.lightSampler");
+  REQUIRE(sampler != nullptr);
+  CHECK(sampler->value() == "auto");
+}
+
 TEST_CASE("prism converge --seconds compares the chosen integrators at equal time and names the one to use") {
   const auto dir = test::temp_dir("converge_equal_time");
   std::string err;

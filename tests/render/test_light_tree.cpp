@@ -44,8 +44,12 @@ Scene every_light_scene() {
   scene.point_lights.push_back({"p1", {-4.f, -2.f, 4.f}, RgbIlluminantSpectrum(Rgb{1.f, 2.f, 1.f})});
   scene.spot_lights.push_back(
       {"s0", {0.f, 6.f, 0.f}, {0.f, -1.f, 0.f}, 0.2f, 0.5f, RgbIlluminantSpectrum(Rgb{20.f, 20.f, 20.f})});
-  scene.spot_lights.push_back(
-      {"s1", {3.f, -3.f, 3.f}, normalize(Vec3f(-1.f, 1.f, -1.f)), 0.3f, 0.3f, RgbIlluminantSpectrum(Rgb{9.f, 9.f, 9.f})});
+  scene.spot_lights.push_back({"s1",
+                               {3.f, -3.f, 3.f},
+                               normalize(Vec3f(-1.f, 1.f, -1.f)),
+                               0.3f,
+                               0.3f,
+                               RgbIlluminantSpectrum(Rgb{9.f, 9.f, 9.f})});
   scene.directional_lights.push_back(
       {"sun", normalize(Vec3f(0.3f, -1.f, 0.2f)), RgbIlluminantSpectrum(Rgb{2.f, 2.f, 2.f})});
   scene.environment = RgbIlluminantSpectrum(Rgb{0.05f, 0.05f, 0.05f});
@@ -58,10 +62,10 @@ Scene every_light_scene() {
 std::vector<LightSampleContext> shading_points() {
   const Vec3f up(0.f, 1.f, 0.f), zero(0.f, 0.f, 0.f);
   return {
-      {{0.f, -6.f, 0.f}, {}, up, up},                                  // under the lights, facing them
-      {{0.f, 7.f, 0.f}, {}, up, up},                                   // above, facing away: back-facing
-      {{0.5f, 0.2f, -0.3f}, {}, up, zero},                             // among them, transmitting
-      {{6.f, 0.f, 1.f}, {}, {-1.f, 0.f, 0.f}, {-1.f, 0.f, 0.f}},       // beside, facing them
+      {{0.f, -6.f, 0.f}, {}, up, up},                                        // under the lights, facing them
+      {{0.f, 7.f, 0.f}, {}, up, up},                                         // above, facing away: back-facing
+      {{0.5f, 0.2f, -0.3f}, {}, up, zero},                                   // among them, transmitting
+      {{6.f, 0.f, 1.f}, {}, {-1.f, 0.f, 0.f}, {-1.f, 0.f, 0.f}},             // beside, facing them
       {{60.f, 30.f, -40.f}, {}, normalize(Vec3f(-1.f, -0.5f, 0.7f)), zero},  // far away
   };
 }

@@ -76,7 +76,7 @@ Scene texel_lamp_scene() {
   scene.materials.push_back(lamp);
   test::add_mesh(scene, test::make_quad({-20, 0, -20}, {0, 0, 40}, {40, 0, 0}, 0));  // front = +y
   Mesh quad = test::make_quad({-1, 1, -1}, {2, 0, 0}, {0, 0, 2}, 1);                 // front = −y
-  quad.uv[0] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};  // u along x, v along z
+  quad.uv[0] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};                                     // u along x, v along z
   test::add_mesh(scene, std::move(quad));
   return scene;
 }
