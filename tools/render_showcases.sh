@@ -37,6 +37,8 @@ glass_of_water|A glass of water throwing its caustic on the table|glass_of_water
 prism_rainbow|Newton's experiment: white light through a slit and a flint prism|prism_rainbow|--width 384 --spp 512
 dispersion|A dispersive prism and the spectrum it casts|dispersion|--width 384 --spp 800
 diamond|A brilliant-cut diamond on a dark floor under one small light: its fire|diamond|--width 384 --spp 1536
+lamp_hall|A hall lit by 1,152 small lamps of six colours, its light sampled by a light tree|lamp_hall|--width 480 --spp 160
+screen_room|A dark room lit only by a screen showing a city at night, sampled by its texels|screen_room|--width 480 --spp 512
 metamerism_d65|Two paints under D65: they match|metamerism|--width 320 --spp 128 --env 1,1,1 --env-spectrum D65 --white-balance D65
 metamerism_a|The same two paints under illuminant A: they part|metamerism|--width 320 --spp 128 --env 1,1,1 --env-spectrum A --white-balance A
 metamerism_f11|The same two paints under F11: they part|metamerism|--width 320 --spp 128 --env 1,1,1 --env-spectrum F11 --white-balance F11

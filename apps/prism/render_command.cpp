@@ -99,13 +99,15 @@ std::string fingerprint(const RenderArgs& args, const Scene& scene, const Camera
       "camera-hash={:016x} size={}x{} "
       "integrator={} merge-radius={} "
       "seed={} sampler={} "
-      "wavelengths={} max-depth={} light-sampling={} noise-threshold={} noise-channels={} aovs={} spectral-bins={} "
+      "wavelengths={} max-depth={} light-sampling={} light-sampler={} noise-threshold={} noise-channels={} aovs={} "
+      "spectral-bins={} "
       "energy-compensation={} gltf-scene={} variant={} animation={}",
       scene.source.filename().string(), scene.source_hash, time ? fmt::format("{}", *time) : "-", s.env,
       std::filesystem::path(s.env_map).filename().string(), env_map ? env_map->hash : 0, s.env_rotate, s.env_scale,
       std::filesystem::path(s.env_spectrum).filename().string(), environment_hash(scene), s.camera, camera.hash(),
       camera.width(), camera.height(), integrator(o.integrator).name, o.merge_radius, o.seed, sampler_name(o.sampler),
-      o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf", o.noise_threshold,
+      o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf", light_sampler_name(s.light_sampler),
+      o.noise_threshold,
       o.noise_threshold > 0  // the output space's channels steer adaptive sampling
           ? fmt::format("{}/{}", ColorPipeline::standard().canonical_name(args.colorspace), args.white_balance)
           : "-",

@@ -4,8 +4,8 @@
 //   power: in proportion to the light's power, wherever the point is (PowerLightSampler);
 //   tree:  by a light tree's estimate of what each light brings to the point (LightTree);
 //   auto:  the tree where the scene has three finite lights or more. With one or two (a single
-//          emissive quad is two) it has little to choose between and costs time: on the default
-//          scene, the same error for about a tenth more time per sample.
+//          emissive quad is two) it has little to choose between and only costs time
+//          (docs/performance.md, "Light sampling").
 // Light paths (BDPT, VCM, light tracing) start from a light chosen by power alone (by_power): an
 // emission has no point to choose for.
 
