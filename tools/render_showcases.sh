@@ -10,7 +10,7 @@
 #   tools/render_showcases.sh [--build DIR] [NAME ...]   (default: build/, every picture)
 #
 # Run it on an otherwise idle machine: the times it writes are wall times. All the pictures take
-# about 40 minutes on 2 cores. The EXR images are kept in a temporary folder only.
+# about 45 minutes on 2 cores. The EXR images are kept in a temporary folder only.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$root/build
