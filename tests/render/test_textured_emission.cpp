@@ -135,7 +135,7 @@ TEST_CASE("a lamp's one bright texel lights the floor as its patch does, sampled
       variance += (r - e) * (r - e);
     }
   INFO("rendered " << rendered << ", expected " << expected);
-  CHECK(rendered == Approx(expected).epsilon(0.01));
+  CHECK(rendered == Approx(expected).epsilon(0.01 * test::kErrorScale));
   // Per pixel within a few per cent (RMS): sampling the quad uniformly, its bright texel one
   // sample in 64, leaves about half the mean.
   CHECK(std::sqrt(variance / (n * n)) < 0.1 * test::kErrorScale * expected / (n * n));
