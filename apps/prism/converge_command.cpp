@@ -51,8 +51,7 @@ std::vector<Configuration> configurations(const ConvergeArgs& args) {
   if (!args.light_samplers.empty()) {
     std::vector<Configuration> c;
     for (const std::string& name : args.light_samplers)
-      for (const LightSamplerInfo& l : kLightSamplers)
-        if (l.name == name) c.push_back({"path, light sampler " + name, base, l.kind});
+      c.push_back({"path, light sampler " + name, base, find_light_sampler(name)->kind});
     return c;
   }
   if (!args.integrators.empty()) {
@@ -314,9 +313,7 @@ void add_converge_command(CLI::App& app) {
                       "Compare these light samplers (comma-separated: " + samplers + "), path traced, instead")
           ->delimiter(',')
           ->check([](const std::string& name) {
-            for (const LightSamplerInfo& l : kLightSamplers)
-              if (l.name == name) return std::string();
-            return fmt::format("unknown light sampler '{}'", name);
+            return find_light_sampler(name) ? std::string() : fmt::format("unknown light sampler '{}'", name);
           });
   light_samplers->excludes(cmd->get_option("--integrators"));
   cmd->add_option("--reference-integrator", args->reference_integrator,

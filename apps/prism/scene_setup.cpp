@@ -137,12 +137,6 @@ void add_scene_options(CLI::App* cmd, SceneArgs& args) {
       ->default_str(std::string(light_sampler_name(kDefaultLightSampler)));
 }
 
-std::string_view light_sampler_name(LightSamplerKind kind) {
-  for (const LightSamplerInfo& l : kLightSamplers)
-    if (l.kind == kind) return l.name;
-  return "?";
-}
-
 void add_gltf_options(CLI::App* cmd, GltfOptions& options) {
   cmd->add_option("--scene", options.scene,
                   "Render the file's N-th scene (0-based; default: the file's `scene`, else 0)")

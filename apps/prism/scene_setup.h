@@ -39,9 +39,6 @@ void add_scene_options(CLI::App* cmd, SceneArgs& args);
 // --scene, --variant, --time, --animation and --allow-external-paths.
 void add_gltf_options(CLI::App* cmd, GltfOptions& options);
 
-// The name of a light sampler (kLightSamplers).
-std::string_view light_sampler_name(LightSamplerKind kind);
-
 // --spp, --seed, --threads, --max-depth, --integrator (its name, or "auto": resolve_integrator), --merge-radius,
 // --wavelengths, --sampler, --light-sampling.
 void add_render_options(CLI::App* cmd, RenderOptions& options, std::string& integrator);

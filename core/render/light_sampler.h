@@ -36,6 +36,18 @@ inline constexpr std::array kLightSamplers{
 };
 inline constexpr LightSamplerKind kDefaultLightSampler = LightSamplerKind::automatic;
 
+// The row of kLightSamplers named `name`, or null.
+inline const LightSamplerInfo* find_light_sampler(std::string_view name) {
+  for (const LightSamplerInfo& l : kLightSamplers)
+    if (l.name == name) return &l;
+  return nullptr;
+}
+inline std::string_view light_sampler_name(LightSamplerKind kind) {
+  for (const LightSamplerInfo& l : kLightSamplers)
+    if (l.kind == kind) return l.name;
+  return "?";
+}
+
 class LightSampler {
  public:
   LightSampler() = default;

@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "core/base/error.h"
+#include "materials/bsdf_sample.h"
 
 #ifdef __AVX__
 #include <immintrin.h>
@@ -17,8 +18,6 @@
 namespace prism {
 
 namespace {
-
-constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 
 // The solid-angle measure of a cone of normals within θ_o, each emitting within θ_e about itself
 // (Conty Estevez & Kulla 2018, eq. 1): the orientation term of the split cost.
@@ -319,7 +318,7 @@ std::optional<SampledLight> LightTree::sample(const ShadingPoint& at, float u) c
     }
     const float chosen = importance[size_t(lane)];
     pmf *= chosen / sum;
-    u = std::clamp((target - below) / chosen, 0.f, kOneMinusEpsilon);
+    u = within_lobe(target, below, chosen);
     const uint32_t child = nodes_[node].child[size_t(lane)];
     if (child & kLeaf) return SampledLight{child & ~kLeaf, pmf};
     node = child;

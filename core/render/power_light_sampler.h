@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "materials/bsdf_sample.h"
+
 namespace prism {
 
 class PowerLightSampler {
@@ -40,8 +42,7 @@ class PowerLightSampler {
   // As sample(u), and u made uniform over [0, 1) again within the chosen light's interval.
   uint32_t sample_reusing(float& u) const {
     const uint32_t i = sample(u);
-    const float lo = i == 0 ? 0.f : cdf_[i - 1];
-    if (pmf_[i] > 0) u = std::clamp((u - lo) / pmf_[i], 0.f, 0x1.fffffep-1f);
+    u = within_lobe(u, i == 0 ? 0.f : cdf_[i - 1], pmf_[i]);
     return i;
   }
 

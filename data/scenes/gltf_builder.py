@@ -46,6 +46,19 @@ def polygon(*pts):
 def quad(a, b, c, d):
     return polygon(a, b, c, d)
 
+def room(half_width, height, depth, floor, walls):
+    """The six inner faces of a box room, x in [-half_width, half_width], y in [0, height], z in
+    [0, depth], facing inwards: (name, mesh, material) objects, the floor's material `floor`."""
+    w, h, d = half_width, height, depth
+    return [
+        ("floor", quad((-w, 0, 0), (-w, 0, d), (w, 0, d), (w, 0, 0)), floor),
+        ("ceiling", quad((-w, h, 0), (w, h, 0), (w, h, d), (-w, h, d)), walls),
+        ("left_wall", quad((-w, 0, 0), (-w, h, 0), (-w, h, d), (-w, 0, d)), walls),
+        ("right_wall", quad((w, 0, 0), (w, 0, d), (w, h, d), (w, h, 0)), walls),
+        ("far_wall", quad((-w, 0, d), (-w, h, d), (w, h, d), (w, 0, d)), walls),
+        ("near_wall", quad((-w, 0, 0), (w, 0, 0), (w, h, 0), (-w, h, 0)), walls),
+    ]
+
 def convex_solid(faces):
     """Closed (or bottomless) convex solid from polygons given in any winding;
     each face is turned to face away from the solid's centroid."""

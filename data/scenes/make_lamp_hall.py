@@ -12,7 +12,7 @@ Standard library only (helpers in gltf_builder.py).
 """
 import os
 
-from gltf_builder import build_gltf, cuboid, diffuse, emitter, look_at_camera, merge, quad, write_gltf
+from gltf_builder import build_gltf, cuboid, diffuse, emitter, look_at_camera, merge, quad, room, write_gltf
 
 WIDTH, LENGTH, HEIGHT = 24.0, 48.0, 4.0
 LAMPS_X, LAMPS_Z, LAMP = 24, 48, 0.25
@@ -25,15 +25,9 @@ def lamp(x, z):
     return quad((x - h, y, z - h), (x + h, y, z - h), (x + h, y, z + h), (x - h, y, z + h))
 
 def objects():
-    w, l, h = WIDTH / 2, LENGTH, HEIGHT
+    w, h = WIDTH / 2, HEIGHT
     white, grey = diffuse("white", (0.7, 0.7, 0.7)), diffuse("floor", (0.45, 0.42, 0.4))
-    out = [
-        ("floor", quad((-w, 0, 0), (-w, 0, l), (w, 0, l), (w, 0, 0)), grey),
-        ("ceiling", quad((-w, h, 0), (w, h, 0), (w, h, l), (-w, h, l)), white),
-        ("left_wall", quad((-w, 0, 0), (-w, h, 0), (-w, h, l), (-w, 0, l)), white),
-        ("right_wall", quad((w, 0, 0), (w, 0, l), (w, h, l), (w, h, 0)), white),
-        ("end_wall", quad((-w, 0, l), (-w, h, l), (w, h, l), (w, 0, l)), white),
-        ("near_wall", quad((-w, 0, 0), (w, 0, 0), (w, h, 0), (-w, h, 0)), white),
+    out = room(w, h, LENGTH, grey, white) + [
         ("pillars", merge(*(cuboid((x, h / 2, z), (0.6, h, 0.6)) for x in (-6.0, 6.0)
                             for z in (6.0, 14.0, 22.0, 30.0, 38.0))), white),
     ]

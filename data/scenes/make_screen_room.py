@@ -14,7 +14,7 @@ Standard library only (helpers in gltf_builder.py); the texture is a seeded pseu
 import os
 import random
 
-from gltf_builder import build_gltf, cuboid, diffuse, look_at_camera, png, quad, write_gltf
+from gltf_builder import build_gltf, cuboid, diffuse, look_at_camera, png, quad, room, write_gltf
 
 TEX_W, TEX_H = 256, 144
 
@@ -53,13 +53,7 @@ def objects():
     sx, sy, sz = 1.6, 1.7, d - 0.02
     panel = quad((sx, sy - 0.9, sz), (-sx, sy - 0.9, sz), (-sx, sy + 0.9, sz), (sx, sy + 0.9, sz))
     panel["uvs"] = [(0.0, 1.0), (1.0, 1.0), (1.0, 0.0), (0.0, 0.0)]
-    return [
-        ("floor", quad((-w, 0, 0), (-w, 0, d), (w, 0, d), (w, 0, 0)), white),
-        ("ceiling", quad((-w, h, 0), (w, h, 0), (w, h, d), (-w, h, d)), white),
-        ("left_wall", quad((-w, 0, 0), (-w, h, 0), (-w, h, d), (-w, 0, d)), white),
-        ("right_wall", quad((w, 0, 0), (w, 0, d), (w, h, d), (w, h, 0)), white),
-        ("far_wall", quad((-w, 0, d), (-w, h, d), (w, h, d), (w, 0, d)), white),
-        ("near_wall", quad((-w, 0, 0), (w, 0, 0), (w, h, 0), (-w, h, 0)), white),
+    return room(w, h, d, white, white) + [
         ("sofa", cuboid((0.0, 0.4, 1.6), (2.4, 0.8, 0.9)), dark),
         ("table", cuboid((0.0, 0.25, 3.4), (1.2, 0.5, 0.7)), dark),
         ("screen", panel, screen),
