@@ -117,29 +117,29 @@ void World::add_enclosures() {
 }
 
 // The distributions of a textured emitter's triangles, per mesh and triangle (null where one is
-// not worth having: a triangle of a texel or less), and each triangle's mean emitted luminance over
-// its untextured emission. The sub-triangles, about a texel each, are at most kBudget in all:
-// beyond that, fewer rows for every triangle alike.
-void World::add_texels() {
+// not worth having: a triangle of a quarter texel or less); returns each triangle's mean emitted
+// luminance over its untextured emission. The sub-triangles, about a quarter texel each, are about
+// kBudget in all at most: beyond that, fewer rows for every triangle alike.
+std::vector<std::vector<float>> World::add_texels() {
   constexpr double kBudget = 1 << 22;
   constexpr int kMaxRows = 128;
   std::vector<std::pair<uint32_t, uint32_t>> triangles;  // (mesh, prim) of textured emitters
   std::vector<float> footprint;
   std::vector<bool> emits(scene_.meshes.size(), false);
   for (const Instance& inst : scene_.instances) emits[inst.mesh] = true;
-  texel_mean_.resize(scene_.meshes.size());
+  std::vector<std::vector<float>> mean(scene_.meshes.size());
   texels_.resize(scene_.meshes.size());
   double total = 0;
   for (uint32_t m = 0; m < scene_.meshes.size(); ++m) {
     const Mesh& mesh = scene_.meshes[m];
     const Material& material = scene_.materials[mesh.material];
     if (!emits[m] || !material.emission || !material.emission_texture) continue;
-    texel_mean_[m].assign(mesh.indices.size() / 3, 0.f);
+    mean[m].assign(mesh.indices.size() / 3, 0.f);
     texels_[m].resize(mesh.indices.size() / 3);
     for (uint32_t p = 0; p < mesh.indices.size() / 3; ++p) {
       triangles.emplace_back(m, p);
       footprint.push_back(TexturedEmission::footprint(mesh, p, material));
-      total += std::min<double>(footprint.back(), kMaxRows * kMaxRows);
+      total += std::min<double>(4 * footprint.back(), kMaxRows * kMaxRows);
     }
   }
   const double scale = total > kBudget ? kBudget / total : 1.0;
@@ -147,13 +147,14 @@ void World::add_texels() {
     const auto [m, p] = triangles[size_t(t)];
     const Mesh& mesh = scene_.meshes[m];
     const Material& material = scene_.materials[mesh.material];
-    const int k = std::clamp(int(std::ceil(2 * std::sqrt(footprint[size_t(t)] * scale))), 1, kMaxRows);
+    const int k = std::clamp(int(std::ceil(std::sqrt(4 * footprint[size_t(t)] * scale))), 1, kMaxRows);
     const std::vector<float> w = TexturedEmission::weights(mesh, p, material, k);
     double sum = 0;
     for (float x : w) sum += x;
-    texel_mean_[m][p] = float(sum / double(w.size()));
+    mean[m][p] = float(sum / double(w.size()));
     if (k > 1 && sum > 0) texels_[m][p] = std::make_unique<const TexturedEmission>(k, w);
   });
+  return mean;
 }
 
 void World::add_lights(LightSamplerKind light_sampler) {
@@ -161,7 +162,7 @@ void World::add_lights(LightSamplerKind light_sampler) {
   std::vector<std::optional<LightBounds>> bounds;  // of the finite lights, for a light tree
   std::vector<std::optional<float>> material_luminance(scene_.materials.size());  // once per emitting material
   instance_light_base_.assign(scene_.instances.size(), -1);
-  add_texels();
+  const std::vector<std::vector<float>> texel_mean = add_texels();
   for (uint32_t i = 0; i < scene_.instances.size(); ++i) {
     const Instance& inst = scene_.instances[i];
     const Mesh& mesh = scene_.meshes[inst.mesh];
@@ -169,7 +170,7 @@ void World::add_lights(LightSamplerKind light_sampler) {
     if (!material.emission) continue;
     const bool textured = material.emission_texture.has_value();
     // Power by luminance; a textured emission's triangle counts with its texels' mean (and its
-    // alpha coverage), texel_mean_.
+    // alpha coverage), texel_mean.
     std::optional<float>& power_luminance = material_luminance[mesh.material];
     if (!power_luminance) {
       power_luminance = spectrum_to_xyz(*material.emission).y;
@@ -187,7 +188,7 @@ void World::add_lights(LightSamplerKind light_sampler) {
       const TexturedEmission* texels = textured ? texels_[inst.mesh][p].get() : nullptr;
       lights_.push_back(AreaLight{v[0], v[1], v[2], n, area, &material, &mesh, p, material.double_sided, texels});
       // Φ = π · A · L for a one-sided Lambertian emitter; luminance stands in for L.
-      const float luminance = *power_luminance * (textured ? texel_mean_[inst.mesh][p] : 1.f);
+      const float luminance = *power_luminance * (textured ? texel_mean[inst.mesh][p] : 1.f);
       powers.push_back(area > 0 ? kPi * area * luminance * (material.double_sided ? 2.f : 1.f) : 0.f);
       // Normals in one direction, each emitting over its hemisphere (θ_e = π/2).
       Bounds3f box;

@@ -78,7 +78,7 @@ class World {
   void shade(SurfaceInteraction& si, const AccelHit& hit) const;
   bool cut_away(const SurfaceInteraction& si, const Ray& ray, bool keep_blend) const;
   void add_enclosures();
-  void add_texels();
+  std::vector<std::vector<float>> add_texels();
   void add_lights(LightSamplerKind light_sampler);
 
   const Scene& scene_;
@@ -110,10 +110,9 @@ class World {
   std::unique_ptr<const EnvironmentMap> environment_map_;
   std::unique_ptr<const Spectrum> environment_radiance_;  // the constant environment, tabulated per nm
   std::vector<std::optional<ConstantSpectra>> spectra_;   // per material (SurfacePoint)
-  // Per mesh of a textured emitter, per triangle: the distribution of its points by their light
-  // (or null), and its mean emitted luminance over the untextured one (add_texels).
+  // Per mesh of a textured emitter, per triangle: the distribution of its points by their light,
+  // or null (add_texels).
   std::vector<std::vector<std::unique_ptr<const TexturedEmission>>> texels_;
-  std::vector<std::vector<float>> texel_mean_;
   LightSampler light_sampler_;
   std::vector<uint32_t> delta_lights_, area_lights_;
   PowerLightSampler area_light_sampler_;
