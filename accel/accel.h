@@ -137,6 +137,7 @@ class Accel {
   std::vector<int> tree_of_mesh_;  // into mesh_trees_, or −1 for a mesh flattened into world_
   std::vector<uint32_t> first_prim_;
   size_t triangle_count_ = 0;
+  float t_slack_ = 0;  // how far beyond the closest hit so far a box is still entered (Bvh::traverse)
   bool brute_force_ = false;
 };
 

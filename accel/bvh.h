@@ -137,11 +137,13 @@ class Bvh {
 
   // Visits the leaves a ray may hit, nearest first: calls leaf(first_block, block_count), or
   // solo(index) for a solo leaf, which tests the leaf's primitives, lowers tmax to any closer hit
-  // and returns whether it hit. Boxes entered beyond tmax are skipped; with AnyHit, returns at
-  // the first hit. `blocks` (the leaves' blocks) is only prefetched. Defined in bvh_traverse.h,
-  // which only the tracing code includes (so that changing it recompiles one file).
+  // and returns whether it hit. Boxes entered beyond tmax + slack are skipped, `slack` being what
+  // a primitive test may round its t below the exact one's (so that a primitive whose rounded t is
+  // the least is found even when its box starts beyond the first hit: faces that coincide). With
+  // AnyHit, returns at the first hit. `blocks` (the leaves' blocks) is only prefetched. Defined in
+  // bvh_traverse.h, which only the tracing code includes (so that changing it recompiles one file).
   template <bool AnyHit, typename Block, typename Leaf, typename Solo>
-  bool traverse(const Ray& ray, float& tmax, const Block* blocks, Leaf&& leaf, Solo&& solo) const;
+  bool traverse(const Ray& ray, float& tmax, float slack, const Block* blocks, Leaf&& leaf, Solo&& solo) const;
   // Whether any leaf whose box may meet the region says its primitives may: leaf(first_block,
   // block_count) or solo(index). Also in bvh_traverse.h.
   template <typename Leaf, typename Solo>

@@ -8,7 +8,7 @@
 namespace prism {
 
 template <bool AnyHit, typename Block, typename Leaf, typename Solo>
-bool Bvh::traverse(const Ray& r, float& tmax, const Block* blocks, Leaf&& leaf, Solo&& solo) const {
+bool Bvh::traverse(const Ray& r, float& tmax, float slack, const Block* blocks, Leaf&& leaf, Solo&& solo) const {
   using simd::f8;
   if (root_ == kNoRoot) return false;
   const BvhRay ray(r);  // built here, so the compiler keeps it in registers
@@ -43,8 +43,9 @@ bool Bvh::traverse(const Ray& r, float& tmax, const Block* blocks, Leaf&& leaf, 
                                                     simd::max_ignore_nan(slab(ray.rows[2], 2, ray.inv_near[2]), f8{})));
       const f8 t_leave = simd::min_ignore_nan(
           slab(ray.rows[3], 0, ray.inv_far[0]),
-          simd::min_ignore_nan(slab(ray.rows[4], 1, ray.inv_far[1]),
-                               simd::min_ignore_nan(slab(ray.rows[5], 2, ray.inv_far[2]), simd::broadcast(tmax))));
+          simd::min_ignore_nan(
+              slab(ray.rows[4], 1, ray.inv_far[1]),
+              simd::min_ignore_nan(slab(ray.rows[5], 2, ray.inv_far[2]), simd::broadcast(tmax + slack))));
       uint32_t mask = simd::bits(t_enter <= t_leave);
       if (mask) {
         int i = std::countr_zero(mask);
@@ -91,7 +92,7 @@ bool Bvh::traverse(const Ray& r, float& tmax, const Block* blocks, Leaf&& leaf, 
         continue;
       }
     }
-    // Next: the nearest box still pending that starts before tmax.
+    // Next: the nearest box still pending that starts before tmax (+ slack).
     if constexpr (AnyHit) {
       if (top == 0) return false;
       ref = stack[--top].ref;
@@ -100,7 +101,7 @@ bool Bvh::traverse(const Ray& r, float& tmax, const Block* blocks, Leaf&& leaf, 
     do {
       if (top == 0) return found;
       --top;
-    } while (stack[top].t > tmax);
+    } while (stack[top].t > tmax + slack);
     ref = stack[top].ref;
   }
 }

@@ -304,7 +304,7 @@ TEST_CASE("a tree that is one leaf is entered only by rays through its box") {
     int entered = 0;
     float tmax = ray.tmax;
     bvh.traverse<false, TriangleBlock>(
-        ray, tmax, nullptr,
+        ray, tmax, 0.f, nullptr,
         [&](uint32_t, uint32_t) {
           ++entered;
           return false;

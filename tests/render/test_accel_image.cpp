@@ -1,7 +1,9 @@
 // The BVH does not change what the renderer draws: images rendered through the BVH are
 // identical, bit for bit, to images rendered by testing every triangle for every ray (same
 // scene, same seed). Any ray the BVH answered differently (a missed or wrongly ordered hit, a
-// culled instance, a lost shadow) would change the image.
+// culled instance, a lost shadow) would change the image. Faces that coincide (a block's base on
+// the floor) are hit at t within the triangle test's rounding of each other, and the BVH must
+// still find the one of least rounded t that testing every triangle finds.
 
 #include <catch2/catch.hpp>
 #include <cstring>
@@ -14,15 +16,13 @@ using namespace prism;
 
 namespace {
 
-std::vector<float> render_xyz(const Scene& scene, const CameraDesc& camera, const AccelOptions& accel) {
+std::vector<float> render_xyz(const Scene& scene, const CameraDesc& camera, const AccelOptions& accel,
+                              SamplerKind sampler = SamplerKind::independent, uint64_t seed = 3) {
   const World world(scene, accel);
   RenderOptions options;
   options.spp = 4;
-  options.seed = 3;
-  // The random numbers this test was verified with. Other seeds or the Sobol sampler show a
-  // known, still unexplained difference in a few deep-path pixels with next-event estimation
-  // (e.g. independent seed 8, Sobol seed 3 on the Cornell box: 1-2 pixels), left to the BVH work.
-  options.sampler = SamplerKind::independent;
+  options.seed = seed;
+  options.sampler = sampler;
   options.path.max_depth = 8;
   options.progress = false;
   return render(world, Camera(camera, 48, 36), options).state.film.xyz_image();
@@ -57,12 +57,16 @@ Scene shared_mesh_scene() {
 }  // namespace
 
 TEST_CASE("the BVH renders the image that testing every triangle renders, bit for bit") {
-  SECTION("the default Cornell box") {
+  SECTION("the default Cornell box, its blocks' bases on its floor") {
     const Scene scene = load_gltf(std::filesystem::path(PRISM_SOURCE_DIR) / "data/scenes/cornell.gltf");
-    const auto bvh = render_xyz(scene, scene.cameras[0], {});
-    const auto reference = render_xyz(scene, scene.cameras[0], {.brute_force = true});
-    REQUIRE(same_bits(bvh, reference));
-    CHECK(*std::max_element(bvh.begin(), bvh.end()) > 0.f);
+    for (const SamplerKind sampler : {SamplerKind::independent, SamplerKind::sobol})
+      for (const uint64_t seed : {3, 6, 7, 8, 12}) {
+        INFO("sampler " << int(sampler) << ", seed " << seed);
+        const auto bvh = render_xyz(scene, scene.cameras[0], {}, sampler, seed);
+        const auto reference = render_xyz(scene, scene.cameras[0], {.brute_force = true}, sampler, seed);
+        REQUIRE(same_bits(bvh, reference));
+        CHECK(*std::max_element(bvh.begin(), bvh.end()) > 0.f);
+      }
   }
   SECTION("a shared mesh, traced through its instances") {
     const Scene scene = shared_mesh_scene();
