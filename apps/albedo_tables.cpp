@@ -24,9 +24,11 @@ namespace {
 using namespace prism;
 using namespace prism::albedo_tables;
 
-// The albedos of one direction: reflection with Fresnel, reflection + transmission, reflection with F = 1.
+// The albedos of one direction: reflection with Fresnel, reflection + transmission, reflection with F = 1; and the
+// probabilities that a sampled visible normal gives a direction on the intended side: the interface's (reflection
+// chosen with probability F, refraction otherwise) and the reflection's alone.
 struct Albedos {
-  float r, rt, white;
+  float r, rt, white, valid, white_valid;
 };
 
 // E(μ) = ∫ f(wo, wi) |cos θ_i| dω_i by quasi-Monte Carlo visible-normal sampling over a
@@ -34,11 +36,11 @@ struct Albedos {
 // (1 − F) G(wo, wt)/G1(wo) for transmission). 1024 points reach 10⁻³; a 24 × 24 grid of strata
 // missed by up to 5% where few normals send light below the horizon.
 Albedos directional_albedos(float mu, float alpha, float eta) {
-  if (TrowbridgeReitz::effectively_smooth(alpha)) return {fresnel_dielectric(mu, eta), 1, 1};
+  if (TrowbridgeReitz::effectively_smooth(alpha)) return {fresnel_dielectric(mu, eta), 1, 1, 1, 1};
   const TrowbridgeReitz d(alpha);
   const Vec3f wo(std::sqrt(std::max(0.f, 1 - mu * mu)), 0, mu);
   constexpr int kPoints = 1024;
-  double r = 0, t = 0, white = 0;
+  double r = 0, t = 0, white = 0, valid = 0, white_valid = 0;
   for (uint32_t i = 0; i < kPoints; ++i) {
     // Both coordinates at the middle of their strata: (i + ½)/n and the van der Corput radical inverse + ½/n.
     const float radical_inverse = float(sobol::reverse_bits(i)) * 0x1p-32f + 0.5f / kPoints;
@@ -47,14 +49,17 @@ Albedos directional_albedos(float mu, float alpha, float eta) {
     if (const Vec3f wi = reflect(wo, wm); wi.z > 0) {
       const double g = d.G(wo, wi) / d.G1(wo);
       r += F * g, white += g;
+      valid += F, white_valid += 1;
     }
-    if (eta == 1)
-      t += 1;  // index-matched: the interface is not there
-    else if (const auto refraction = refract(wo, wm, eta); refraction && refraction->wt.z < 0)
+    if (eta == 1) {
+      t += 1, valid += 1;  // index-matched: the interface is not there
+    } else if (const auto refraction = refract(wo, wm, eta); refraction && refraction->wt.z < 0) {
       t += (1 - F) * d.G(wo, refraction->wt) / d.G1(wo);
+      valid += 1 - F;
+    }
   }
   constexpr double n = kPoints;
-  return {float(r / n), float((r + t) / n), float(white / n)};
+  return {float(r / n), float((r + t) / n), float(white / n), float(valid / n), float(white_valid / n)};
 }
 
 // E_avg of exactly the function the renderer reads (`smooth` below the roughness the microfacet
@@ -80,7 +85,7 @@ void fill_slice(Slice& s, int h) {
     for (int m = 0; m < kMu; ++m) {
       const Albedos e = directional_albedos(mu_of(m), alpha_of(a), eta);
       const int i = a * kMu + m;
-      s.r.e[i] = e.r, s.rt.e[i] = e.rt, s.r_compensated.e[i] = e.r / e.rt;
+      s.r.e[i] = e.r, s.rt.e[i] = e.rt, s.r_compensated.e[i] = e.r / e.rt, s.valid.e[i] = e.valid;
     }
   const auto fresnel = [eta](float mu) { return fresnel_dielectric(mu, eta); };
   fill_averages(s.r, fresnel);
@@ -88,9 +93,12 @@ void fill_slice(Slice& s, int h) {
   fill_averages(s.rt, [](float) { return 1.f; });
 }
 
-void fill_white(Grid& g) {
+void fill_white(Grid& g, Table& valid) {
   for (int a = 0; a < kAlpha; ++a)
-    for (int m = 0; m < kMu; ++m) g.e[a * kMu + m] = directional_albedos(mu_of(m), alpha_of(a), 1.5f).white;
+    for (int m = 0; m < kMu; ++m) {
+      const Albedos e = directional_albedos(mu_of(m), alpha_of(a), 1.5f);
+      g.e[a * kMu + m] = e.white, valid.e[a * kMu + m] = e.white_valid;
+    }
   fill_averages(g, [](float) { return 1.f; });
 }
 
@@ -141,7 +149,8 @@ std::string array(const float* v, int n) {
   for (int i = 0; i < n; ++i) s += fmt::format("{}{:a}f", i % 8 ? " " : "\n", v[i]) + (i + 1 < n ? "," : "");
   return s + "}";
 }
-std::string grid(const Grid& g) { return fmt::format("{{{},\n{}}}", array(g.e, kAlpha * kMu), array(g.avg, kAlpha)); }
+std::string table(const Table& t) { return fmt::format("{{{}}}", array(t.e, kAlpha * kMu)); }
+std::string grid(const Grid& g) { return fmt::format("{{{},\n{}}}", table(g), array(g.avg, kAlpha)); }
 
 }  // namespace
 
@@ -152,13 +161,14 @@ int main(int argc, char** argv) {
   }
   const auto slices = std::make_unique<Slice[]>(kEta);
   const auto white = std::make_unique<Grid>();
+  const auto white_valid = std::make_unique<Table>();
   float sheen_e[kSheenAlpha * kSheenMu], sheen_scale[kSheenAlpha];
   float film[(kFilmSteps + 1) * (kFilmSteps + 1)];
   parallel_for(kEta + 1 + kSheenAlpha + kFilmSteps + 1, [&](int64_t i) {
     if (i < kEta)
       fill_slice(slices[i], int(i));
     else if (i == kEta)
-      fill_white(*white);
+      fill_white(*white, *white_valid);
     else if (i < kEta + 1 + kSheenAlpha)
       sheen_scale[i - kEta - 1] = fill_sheen_row(sheen_e + (i - kEta - 1) * kSheenMu, int(i - kEta - 1));
     else
@@ -171,9 +181,11 @@ int main(int argc, char** argv) {
       "// Generated by apps/albedo_tables.cpp at build time; see materials/albedo_tables.h.\n"
       "#include \"materials/albedo_tables.h\"\n\nnamespace prism::albedo_tables {\n\nconst Slice specular[kEta] = {";
   for (int h = 0; h < kEta; ++h)
-    out += fmt::format("\n// eta {}\n{{{},\n{},\n{}}}{}", eta_of(h), grid(slices[h].r), grid(slices[h].r_compensated),
-                       grid(slices[h].rt), h + 1 < kEta ? "," : "");
+    out +=
+        fmt::format("\n// eta {}\n{{{},\n{},\n{},\n{}}}{}", eta_of(h), grid(slices[h].r), grid(slices[h].r_compensated),
+                    grid(slices[h].rt), table(slices[h].valid), h + 1 < kEta ? "," : "");
   out += "};\n\nconst Grid specular_white = " + grid(*white) +
+         ";\n\nconst Table specular_white_valid = " + table(*white_valid) +
          ";\n\nconst float sheen_e[kSheenAlpha * kSheenMu] = " + array(sheen_e, kSheenAlpha * kSheenMu) +
          ";\n\nconst float sheen_scale[kSheenAlpha] = " + array(sheen_scale, kSheenAlpha) +
          ";\n\nconst float film_excess[kFilmSteps * kFilmSteps] = " + array(film_cells, kFilmSteps * kFilmSteps) +

@@ -58,10 +58,9 @@ inline Point point(float mu, const Lerp& a) {
 }
 inline Point point(float mu, float alpha) { return point(mu, alpha_node(alpha)); }
 
-// One table of E over (α, μ) and its cosine-weighted averages E_avg = 2∫ E(μ) μ dμ, per α.
-struct Grid {
+// One quantity over (α, μ).
+struct Table {
   float e[kAlpha * kMu];
-  float avg[kAlpha];
 
   float at(const Point& p) const {  // bilinear
     float r = 0;
@@ -71,12 +70,21 @@ struct Grid {
     }
     return r;
   }
+};
+
+// One table of E over (α, μ) and its cosine-weighted averages E_avg = 2∫ E(μ) μ dμ, per α.
+struct Grid : Table {
+  float avg[kAlpha];
+
   float average(const Lerp& a) const { return (1 - a.t) * avg[a.i] + a.t * avg[a.i + 1]; }  // a: where ∛α falls
 };
 
-// An η slice: reflection, reflection compensated (divided by reflection + transmission), reflection + transmission.
+// An η slice: reflection, reflection compensated (divided by reflection + transmission), reflection + transmission,
+// and the probability that the interface's sampling (a visible normal, then reflection with probability F, else
+// refraction) finds a direction on the side it meant to.
 struct Slice {
   Grid r, r_compensated, rt;
+  Table valid;
 };
 
 // Sheen: E over (α, μ) on nodes uniform in √α and √μ, and the scale that keeps the lobe's albedo ≤ 1.
@@ -100,7 +108,8 @@ inline float film_index_of(int a) { return 1 + float(a) * kFilmStep; }
 
 // The data (albedo_tables_data.cpp, generated).
 extern const Slice specular[kEta];
-extern const Grid specular_white;  // reflection with F = 1
+extern const Grid specular_white;         // reflection with F = 1
+extern const Table specular_white_valid;  // the probability that a visible normal reflects wo above the surface
 extern const float sheen_e[kSheenAlpha * kSheenMu];
 extern const float sheen_scale[kSheenAlpha];
 extern const float film_excess[kFilmSteps * kFilmSteps];  // [n_f cell][η cell]

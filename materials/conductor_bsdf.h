@@ -6,8 +6,9 @@
 // the light of a white metal at roughness 1), is added back with the lobe's own shape (Turquin
 // 2019, "Practical multiple scattering compensation for microfacet models"):
 //   f_ms = (1 + F0 (1 − E(μ_o)) / E(μ_o)) f,   E the white lobe's directional albedo (SpecularAlbedo),
-// so that a lossless surface (F = 1) reflects everything; pdf and sampling are unchanged. Off
-// (`compensate` false) it is the single-scattering lobe of Cycles 3.x and most real-time renderers.
+// so that a lossless surface (F = 1) reflects everything; it samples again where a visible normal
+// sends wo below the surface (sample_tries.h). Off (`compensate` false) it is the single-scattering
+// lobe of Cycles 3.x and most real-time renderers, sampled once.
 // Two-sided: a direction below the surface sees the same lobe, mirrored. An optional thin film
 // (KHR_materials_iridescence) over the metal replaces F (and F0) by the film's exact reflectance
 // (compiled in with Extensions = true).
@@ -17,6 +18,7 @@
 #include "materials/bsdf_sample.h"
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"
+#include "materials/sample_tries.h"
 #include "materials/specular_albedo.h"
 #include "materials/thin_film.h"
 
@@ -65,31 +67,45 @@ class ConductorBsdf {
     if (!wm) return {SampledSpectrum<N>(0.f), 0.f};
     const TrowbridgeReitz::Facet t = distribution_.facet(wo, wi, *wm);
     const SampledSpectrum<N> f = reflectance(dot(wo, *wm)) * (t.D * t.G / (4 * wo.z * wi.z));
-    return {compensate_ ? f * multiple_scattering(wo.z) : f, TrowbridgeReitz::reflected_pdf(wo, t)};
+    if (!compensate_) return {f, TrowbridgeReitz::reflected_pdf(wo, t)};
+    return {f * multiple_scattering(wo.z), TrowbridgeReitz::reflected_pdf(wo, t) * tries(wo.z).pdf_scale};
   }
 
-  // Visible-normal sampling: pdf(wi) = D_wo(m) / (4 |wo·m|) = G1(wo) D(m) / (4 |cos θ_o|).
+  // Visible-normal sampling: pdf(wi) = D_wo(m) / (4 |wo·m|) = G1(wo) D(m) / (4 |cos θ_o|), over
+  // the tries when compensated.
   float pdf(Vec3f wo, Vec3f wi) const {
     const auto wm = half_vector(wo, wi);
-    return wm ? distribution_.reflected_pdf(wo, *wm) : 0.f;
+    if (!wm) return 0.f;
+    return distribution_.reflected_pdf(wo, *wm) * tries(wo.z).pdf_scale;
   }
 
-  std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float, Vec2f u) const {
+  std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
     if (wo.z == 0) return std::nullopt;
     if (smooth_) {
       const Vec3f wi(-wo.x, -wo.y, wo.z);
       return BsdfSample<N>{reflectance(wo.z) / abs_cos_theta(wi), wi, 1.f, true, false, 1.f};
     }
     const float sign = wo.z < 0 ? -1.f : 1.f;
-    const Vec3f wm = distribution_.sample_visible_normal(wo * sign, u) * sign;
-    const Vec3f wi = reflect(wo, wm);
-    if (!same_hemisphere(wo, wi)) return std::nullopt;
-    const BsdfEval<N> e = eval(wo, wi);
-    if (!(e.pdf > 0)) return std::nullopt;
-    return BsdfSample<N>{e.f, wi, e.pdf, false, false, 1.f};
+    const int count = tries(wo.z).count;
+    for (int k = 1;; ++k) {
+      const Vec3f wm = distribution_.sample_visible_normal(wo * sign, u) * sign;
+      if (const Vec3f wi = reflect(wo, wm); same_hemisphere(wo, wi)) {
+        const BsdfEval<N> e = eval(wo, wi);
+        if (!(e.pdf > 0)) return std::nullopt;
+        return BsdfSample<N>{e.f, wi, e.pdf, false, false, 1.f};
+      }
+      if (k >= count) return std::nullopt;
+      sample_tries::next(uc, u);
+    }
   }
 
  private:
+  // How many tries a sample takes (sample_tries.h): those of a lossless reflection when compensated.
+  sample_tries::Tries tries(float mu) const {
+    if (!compensate_ || !distribution_.isotropic()) return sample_tries::kOneTry;
+    return sample_tries::tries(SpecularAlbedo::table().white_valid(std::abs(mu), roughness_));
+  }
+
   // The reflection's half vector m = normalize(wo + wi), with wo and wi turned to the upper
   // hemisphere; none for a smooth lobe, directions on opposite sides, or wo = −wi.
   std::optional<Vec3f> half_vector(Vec3f& wo, Vec3f& wi) const {

@@ -25,17 +25,22 @@
 // with E its single-scattering R + T albedo (SpecularAlbedo::interface, from the side of wo; for a
 // thin wall the white reflection albedo, and for a partly clear one each share's own: see
 // partly_clear_reflection), is shared out in proportion to the lobes: f_ms = f / E(μ_o).
-// pdf and sampling are unchanged; `compensate` false leaves the single-scattering lobes. A
-// specular colour's lanes are compensated with their own indices η_λ; make_bsdf leaves a thin
-// film's lobes uncompensated (E of the filmed interface is not tabulated; dividing by the bare
-// one's lets a film over rough glass reflect up to 1.5% more than it receives).
+// A compensated lobe samples again where a visible normal sends wo to the wrong side
+// (sample_tries.h), where the success probability is tabulated: for the interface with s = 1 and
+// for a lossless reflection (thin walls, opaque faces); other lobes sample once. `compensate`
+// false leaves the single-scattering lobes, sampled once. A specular colour's lanes are
+// compensated with their own indices η_λ; make_bsdf leaves a thin film's lobes uncompensated (E
+// of the filmed interface is not tabulated; dividing by the bare one's lets a film over rough
+// glass reflect up to 1.5% more than it receives).
 
+#include <cstdint>
 #include <limits>
 #include <optional>
 
 #include "materials/bsdf_sample.h"
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"
+#include "materials/sample_tries.h"
 #include "materials/specular_albedo.h"
 #include "materials/thin_film.h"
 
@@ -81,6 +86,10 @@ class DielectricBsdf {
         thin_(thin && transmission > 0),  // an opaque wall is the one interface over its base
         transmission_(transmission),
         specular_(specular),
+        retries_(!compensate_ || !distribution.isotropic() ? Retries::kNone
+                 : thin_ || transmission <= 0              ? Retries::kReflection
+                 : transmission == 1 && specular == 1      ? Retries::kInterface
+                                                           : Retries::kNone),
         lanes_(lanes) {}
 
   bool is_specular() const { return smooth_; }
@@ -162,33 +171,48 @@ class DielectricBsdf {
   std::optional<BsdfSample<N>> sample_f(const Vec3f& wo, float uc, Vec2f u) const {
     if (wo.z == 0) return std::nullopt;
     if (smooth_) return sample_smooth(wo, uc);
-    const Vec3f wm = distribution_.sample_visible_normal(wo, u);
-    const auto [R, T] = shares(selection(dot(wo, wm)));
-    if (R + T <= 0) return std::nullopt;
-    Vec3f wi;
-    bool transmitted = false;
-    float eta_p = 1;
-    if (uc < R / (R + T)) {
-      wi = reflect(wo, wm);
-      if (!same_hemisphere(wo, wi)) return std::nullopt;
-    } else if (thin_) {
-      const Vec3f r = reflect(wo, wm);
-      wi = Vec3f(r.x, r.y, -r.z);
-      transmitted = true;
-      if (same_hemisphere(wo, wi)) return std::nullopt;
-    } else {
-      const auto refraction = refract(wo, wm, eta_);
-      if (!refraction || same_hemisphere(wo, refraction->wt) || refraction->wt.z == 0) return std::nullopt;
-      wi = refraction->wt;
-      eta_p = refraction->eta_p;
-      transmitted = true;
+    for (int k = 1;; ++k) {
+      if (const auto d = sample_direction(wo, uc, u)) {
+        const BsdfEval<N> e = eval(wo, d->wi);
+        if (!(e.pdf > 0)) return std::nullopt;
+        return BsdfSample<N>{e.f, d->wi, e.pdf, false, d->transmitted, d->eta_p};
+      }
+      if (k >= tries(wo.z).count) return std::nullopt;
+      sample_tries::next(uc, u);
     }
-    const BsdfEval<N> e = eval(wo, wi);
-    if (!(e.pdf > 0)) return std::nullopt;
-    return BsdfSample<N>{e.f, wi, e.pdf, false, transmitted, eta_p};
   }
 
  private:
+  // Which success probability a failed sample's next try follows (see the header).
+  enum class Retries : uint8_t { kNone, kReflection, kInterface };
+
+  struct SampledDirection {
+    Vec3f wi;
+    bool transmitted;
+    float eta_p;
+  };
+  // One try: a visible normal, then reflection or transmission by their shares; nothing when the
+  // direction falls on the wrong side.
+  std::optional<SampledDirection> sample_direction(const Vec3f& wo, float uc, Vec2f u) const {
+    const Vec3f wm = distribution_.sample_visible_normal(wo, u);
+    const auto [R, T] = shares(selection(dot(wo, wm)));
+    if (R + T <= 0) return std::nullopt;
+    if (uc < R / (R + T)) {
+      const Vec3f wi = reflect(wo, wm);
+      if (!same_hemisphere(wo, wi)) return std::nullopt;
+      return SampledDirection{wi, false, 1.f};
+    }
+    if (thin_) {
+      const Vec3f r = reflect(wo, wm);
+      const Vec3f wi(r.x, r.y, -r.z);
+      if (same_hemisphere(wo, wi)) return std::nullopt;
+      return SampledDirection{wi, true, 1.f};
+    }
+    const auto refraction = refract(wo, wm, eta_);
+    if (!refraction || same_hemisphere(wo, refraction->wt) || refraction->wt.z == 0) return std::nullopt;
+    return SampledDirection{refraction->wt, true, refraction->eta_p};
+  }
+
   struct HalfVector {
     Vec3f wm;
     bool reflection;
@@ -209,7 +233,7 @@ class DielectricBsdf {
     if constexpr (Extensions)
       if (lanes_ && lanes_->eta)  // each lane's reflectance follows its own index: so does its E
         return single_scattering(wo, wi, h, t, F) / lanes_outgoing_albedo(wo.z);
-    return single_scattering(wo, wi, h, t, F) * outgoing_compensation(wo.z);
+    return single_scattering(wo, wi, h, t, F) * outgoing(wo.z).inverse_e;
   }
 
   // The selection share from the face's reflectance F at the same facet: without per-lane
@@ -225,10 +249,11 @@ class DielectricBsdf {
             const FaceReflectance<float>& face) const {
     const auto [R, T] = shares(face);
     if (R + T <= 0) return 0.f;
+    const float tries = this->tries(wo.z).pdf_scale;
     if (h.reflection || thin_)  // the far side's lobe mirrors the reflection
-      return TrowbridgeReitz::reflected_pdf(wo, t) * (h.reflection ? R : T) / (R + T);
+      return TrowbridgeReitz::reflected_pdf(wo, t) * (h.reflection ? R : T) / (R + T) * tries;
     const float dwm_dwi = abs_dot(wi, h.wm) / sqr(dot(wi, h.wm) + dot(wo, h.wm) / h.eta_p);
-    return TrowbridgeReitz::D_visible(wo, h.wm, t) * dwm_dwi * T / (R + T);
+    return TrowbridgeReitz::D_visible(wo, h.wm, t) * dwm_dwi * T / (R + T) * tries;
   }
 
   // The microfacet normal that takes wo to wi (facing +z), or nothing for a smooth surface,
@@ -289,11 +314,26 @@ class DielectricBsdf {
     if (thin_) return t.white(std::abs(mu), roughness_);
     return t.interface(std::abs(mu), roughness_, mu > 0 ? eta : 1 / eta);
   }
-  // 1 / E(μ_o) for the index every lane follows, kept for the last μ_o asked: a light sample and
-  // the path's own sample are evaluated from the same wo.
-  float outgoing_compensation(float mu) const {
-    if (!(mu == outgoing_.mu)) outgoing_ = {mu, 1 / single_scattering_albedo(mu, eta_)};
-    return outgoing_.inverse_e;
+  // What a compensated lobe needs of μ_o, kept for the last μ_o asked: a light sample and the
+  // path's own sample are evaluated from the same wo.
+  struct Outgoing {
+    float mu = std::numeric_limits<float>::quiet_NaN();  // none yet
+    float inverse_e = 0;                                 // 1 / E(μ_o) for the index every lane follows
+    sample_tries::Tries tries = sample_tries::kOneTry;
+  };
+  const Outgoing& outgoing(float mu) const {
+    if (!(mu == outgoing_.mu)) {
+      outgoing_ = {mu, 1 / single_scattering_albedo(mu, eta_), sample_tries::kOneTry};
+      const SpecularAlbedo& table = SpecularAlbedo::table();
+      if (retries_ == Retries::kReflection)
+        outgoing_.tries = sample_tries::tries(table.white_valid(std::abs(mu), roughness_));
+      else if (retries_ == Retries::kInterface)
+        outgoing_.tries = sample_tries::tries(table.valid(std::abs(mu), roughness_, mu > 0 ? eta_ : 1 / eta_));
+    }
+    return outgoing_;
+  }
+  sample_tries::Tries tries(float mu) const {
+    return retries_ == Retries::kNone ? sample_tries::kOneTry : outgoing(mu).tries;
   }
   // single_scattering_albedo(μ_o) for each lane's own index, kept for the last μ_o asked as the one
   // above: the tables read once at each η node the lanes span, for all lanes at once.
@@ -364,11 +404,8 @@ class DielectricBsdf {
   SampledSpectrum<N> tint_;
   bool thin_;
   float transmission_, specular_;
+  Retries retries_;
   [[no_unique_address]] OptionalPart<Extensions, SpectralReflectance<N>> lanes_;
-  struct Outgoing {
-    float mu = std::numeric_limits<float>::quiet_NaN();  // none yet
-    float inverse_e = 0;
-  };
   mutable Outgoing outgoing_;  // a cache: safe because a Bsdf is built and used within one thread
   struct LanesOutgoing {
     float mu = std::numeric_limits<float>::quiet_NaN();  // none yet

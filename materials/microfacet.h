@@ -23,6 +23,7 @@ class TrowbridgeReitz {
   static constexpr float kSmoothAlpha = 1e-3f;
   static bool effectively_smooth(float alpha) { return alpha < kSmoothAlpha; }
   bool effectively_smooth() const { return effectively_smooth(std::max(ax_, ay_)); }
+  bool isotropic() const { return ax_ == ay_; }
   // The isotropic roughness of equal area, √(α_x α_y), for tables over isotropic lobes.
   float alpha() const { return ax_ == ay_ ? ax_ : std::sqrt(ax_ * ay_); }
 

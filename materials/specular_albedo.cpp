@@ -65,6 +65,17 @@ float SpecularAlbedo::interface(float mu, const Roughness& r, float eta) const {
   return (1 - h.t) * specular[h.i].rt.at(p) + h.t * specular[h.i + 1].rt.at(p);
 }
 
+float SpecularAlbedo::valid(float mu, const Roughness& r, float eta) const {
+  if (smooth(r)) return 1.f;
+  const Lerp h = locate_eta(eta);
+  const Point p = point(mu, r);
+  return (1 - h.t) * specular[h.i].valid.at(p) + h.t * specular[h.i + 1].valid.at(p);
+}
+
+float SpecularAlbedo::white_valid(float mu, const Roughness& r) const {
+  return smooth(r) ? 1.f : specular_white_valid.at(point(mu, r));
+}
+
 void SpecularAlbedo::interface(const Direction& d, int first, int last, std::span<float> out) const {
   const Point p = point(d);
   for (int h = first; h <= last; ++h) out[h - first] = specular[h].rt.at(p);

@@ -11,7 +11,11 @@
 //                      (Kelemen & Szirmay-Kalos 2001; Kulla & Conty 2017, "Revisiting Physically
 //                      Based Shading at Imageworks"): f_diffuse = ρ/π · (1 − E(μ_o))(1 − E(μ_i))/(1 − E_avg).
 // white() and interface() are the single-scattering albedos that the multiple-scattering
-// compensation divides by (Turquin 2019; see conductor_bsdf.h, dielectric_bsdf.h).
+// compensation divides by (Turquin 2019; see conductor_bsdf.h, dielectric_bsdf.h). Beside them, the
+// probability that sampling a visible normal gives a direction on the side it meant to:
+//   valid(μ, α, η)     of the lossless interface (reflection chosen with probability F, else refraction);
+//   white_valid(μ, α)  of the reflection alone (and of a thin wall, whose far side mirrors it);
+// a compensated dielectric samples again where a sample fails, and its pdf needs them.
 // Tabulated over √μ, ∛α ∈ [0, 1] and x = (η − 1)/(η + 1) ∈ [−1/2, 1/2], axes on which E varies
 // smoothly enough for linear interpolation; the tables are computed at build time
 // (materials/albedo_tables.h), so a lookup only interpolates.
@@ -148,6 +152,8 @@ class SpecularAlbedo {
     return lanes.interpolate(at_nodes);
   }
   float white(float mu, const Roughness& r) const;
+  float valid(float mu, const Roughness& r, float eta) const;
+  float white_valid(float mu, const Roughness& r) const;
   float white_average(const Roughness& r) const;
   float white_average(float alpha) const { return white_average(roughness(alpha)); }
 

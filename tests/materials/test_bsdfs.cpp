@@ -136,3 +136,45 @@ TEST_CASE("a metal made from a colour reflects that colour at normal incidence")
   }
   CHECK(exact == Approx(schlick).margin(2e-3));
 }
+
+TEST_CASE("a compensated rough lobe samples again where a visible normal fails, and its weight stays near 1") {
+  // Inside rough glass (η = 1/1.5, α = 1) a third of the visible normals send wo to the wrong side;
+  // compensated, the lobe tries again, so that hardly a sample is lost and the sampled weights
+  // f cos / pdf (about 1 for a lossless lobe) vary far less than with one try.
+  const TrowbridgeReitz rough(1.f);
+  const auto stats = [&](const auto& bsdf, const Vec3f& wo) {
+    Rng rng(5, 0);
+    int lost = 0;
+    double sum = 0, sum_sq = 0;
+    constexpr int kSamples = 100000;
+    for (int i = 0; i < kSamples; ++i) {
+      const auto s = bsdf.sample_f(wo, rng.uniform(), {rng.uniform(), rng.uniform()});
+      double w = 0;
+      if (s && s->pdf > 0)
+        w = s->f[0] * abs_cos_theta(s->wi) / s->pdf * (same_hemisphere(wo, s->wi) ? 1 : sqr(wo.z > 0 ? 1.5 : 1 / 1.5));
+      else
+        ++lost;
+      sum += w, sum_sq += w * w;
+    }
+    const double mean = sum / kSamples;
+    return std::array<double, 3>{double(lost) / kSamples, mean, sum_sq / kSamples / (mean * mean) - 1};
+  };
+  for (const float mu : {-0.9f, -0.5f, -0.1f}) {
+    const Vec3f wo(std::sqrt(1 - mu * mu), 0, mu);
+    const auto [lost_once, mean_once, relvar_once] =
+        stats(DielectricBsdf<1>(rough, 1.5f, SampledSpectrum<1>(1.f), false, 1, 1, false), wo);
+    const auto [lost, mean, relvar] = stats(DielectricBsdf<1>(rough, 1.5f, SampledSpectrum<1>(1.f), false), wo);
+    INFO("cos θo " << mu << ": lost " << lost << " (one try " << lost_once << "), albedo " << mean
+                   << ", relative variance " << relvar << " (one try, uncompensated " << relvar_once << ")");
+    CHECK(lost_once > 0.2);
+    CHECK(lost < 0.01);
+    CHECK(mean == Approx(1).margin(0.01));
+    CHECK(relvar < relvar_once / 3);
+  }
+  // A rough white metal (n = k = 0: F = 1), half of whose visible normals reflect below it.
+  const ConductorBsdf<1> metal(rough, SampledSpectrum<1>(0.f), SampledSpectrum<1>(0.f));
+  const auto [lost, mean, relvar] = stats(metal, Vec3f(0, 0, 1));
+  INFO("white metal: lost " << lost << ", albedo " << mean);
+  CHECK(lost < 0.01);
+  CHECK(mean == Approx(1).margin(0.01));
+}
