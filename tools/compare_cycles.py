@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Agreement with a peer: render the shared glTF assets with Prism and with Blender 3.4 Cycles
+"""Agreement with a peer: render the shared glTF assets (and, on request, the project's many-light scenes
+lamp_hall and screen_room) with Prism and with Blender 3.4 Cycles
 (the harness in tools/cycles of the shared assets, PRISM_SHARED_DIR) at the same size, camera,
 spp and bounce limit, back to back, and compare the images in linear Rec.709.
 
@@ -36,13 +37,16 @@ REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 # The shared assets both renderers load, each read from
 # PRISM_SHARED_DIR/assets/gltf/<name>/glTF/<name>.gltf.
-ASSETS = ["MetalRoughSpheresNoTextures", "TransmissionTest", "GlassVaseFlowers", "LightsPunctualLamp",
-          "EmissiveStrengthTest", "AttenuationTest", "Box"]
+ASSETS = ["MetalRoughSpheresNoTextures", "TransmissionTest", "TransmissionRoughnessTest", "GlassVaseFlowers",
+          "LightsPunctualLamp", "EmissiveStrengthTest", "AttenuationTest", "Box"]
 # --equal-error's reference length where 2048 spp is too short: LightsPunctualLamp's point-light
 # peaks are heavy-tailed, and with 2 x 1024 spp references its ratio moved by +-0.2 between runs.
 REFERENCE_SPP = {"LightsPunctualLamp": 16384}
 # The layered-material assets, compared on request with --assets.
 LAYERED_ASSETS = ["ClearcoatWicker", "ClearCoatCarPaint", "SheenCloth", "SpecularTest"]
+# The project's own many-light scenes (data/scenes/<name>.gltf), compared on request with --assets.
+SCENES = ["lamp_hall", "screen_room"]
+KNOWN = ASSETS + LAYERED_ASSETS + SCENES
 
 DEFAULT_ASPECT = 4.0 / 3.0  # image aspect for assets without a camera
 LUMA = (0.2126, 0.7152, 0.0722)  # Rec.709 luminance of linear Rec.709 RGB
@@ -61,7 +65,7 @@ def parse_args():
     ap.add_argument("--height", type=int, default=0,
                     help="image height for both (default: width / the camera's aspectRatio, 4:3 without one)")
     ap.add_argument("--assets", default=",".join(ASSETS),
-                    help="comma-separated subset of: " + ", ".join(ASSETS + LAYERED_ASSETS))
+                    help="comma-separated subset of: " + ", ".join(KNOWN))
     ap.add_argument("--threads", type=int, default=2, help="threads for each renderer (default 2)")
     ap.add_argument("--max-depth", type=int, default=16,
                     help="Prism --max-depth D (bounces, camera hit = 0); Cycles gets --max-bounces D-1 (default 16)")
@@ -195,7 +199,8 @@ def write_with_camera(src, g, cam, width, height, dest_dir):
 
 def asset_setup(a, assets_dir, name):
     """The asset's file, glTF, cameras, image size and environment (only for assets without lights)."""
-    src = os.path.join(assets_dir, name, "glTF", name + ".gltf")
+    src = (os.path.join(REPO, "data", "scenes", name + ".gltf") if name in SCENES
+           else os.path.join(assets_dir, name, "glTF", name + ".gltf"))
     with open(src) as f:
         g = json.load(f)
     info = inspect_gltf(g)
@@ -526,7 +531,7 @@ def equal_error(a, harness, exrstats, assets_dir):
             failed.append(name)
     # The summary holds every asset measured into --out so far, so a run split by asset still gets one table.
     results = []
-    for name in ASSETS:
+    for name in KNOWN:
         path = os.path.join(a.out, name, "equal_error.json")
         if os.path.isfile(path) and name not in failed:
             with open(path) as f:
@@ -599,10 +604,9 @@ def main():
     sys.dont_write_bytecode = True  # never leave a __pycache__ in the shared assets
     import exrstats
 
-    unknown = [x for x in a.assets if x not in ASSETS + LAYERED_ASSETS]
+    unknown = [x for x in a.assets if x not in KNOWN]
     if unknown:
-        print("compare_cycles: error: unknown asset(s) %s; choose from %s" % (", ".join(unknown),
-                                                                            ", ".join(ASSETS + LAYERED_ASSETS)),
+        print("compare_cycles: error: unknown asset(s) %s; choose from %s" % (", ".join(unknown), ", ".join(KNOWN)),
               file=sys.stderr)
         return 2
     os.makedirs(a.out, exist_ok=True)

@@ -11,7 +11,7 @@ parsed, stops the script with a message; the tables of benchmarks that finished 
 The markers are checked before anything runs.
 
   NAME          markers               what runs (roughly how long on 2 cores)
-  cycles        cycles                tools/compare_cycles.py --equal-error on the seven shared assets
+  cycles        cycles                tools/compare_cycles.py --equal-error on eight shared assets and the hall of lamps
                                       (about an hour with fresh references; Blender 3.4, numpy and
                                       the shared assets, PRISM_SHARED_DIR)
   rays          rays                  tools/bench_rays.sh, one scene per run, ROUNDS=3 REPEAT=3
@@ -154,8 +154,8 @@ def replace_block(doc, marker, block, dry_run):
 
 
 # --------------------------------------------------------------------------- equal error against Cycles
-CYCLES_ASSETS = ["Box", "MetalRoughSpheresNoTextures", "AttenuationTest", "TransmissionTest", "GlassVaseFlowers",
-                 "EmissiveStrengthTest", "LightsPunctualLamp"]
+CYCLES_ASSETS = ["Box", "MetalRoughSpheresNoTextures", "AttenuationTest", "TransmissionTest", "TransmissionRoughnessTest",
+                 "GlassVaseFlowers", "EmissiveStrengthTest", "LightsPunctualLamp", "lamp_hall"]
 CYCLES_ARGS = ["--equal-error", "--repeat", "3", "--width", "160", "--max-depth", "12", "--env", "0.5,0.5,0.5"]
 
 
