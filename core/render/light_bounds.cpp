@@ -32,8 +32,23 @@ LightBounds merge(const LightBounds& a, const LightBounds& b) {
     m.w = b.w, m.cos_theta_o = b.cos_theta_o;
     return m;
   }
+  // Whether one cone holds the other, θ_d + θ_b ≤ θ_a, from the cosines (no arc cosine: most merges
+  // of a build end here): θ_d + θ_b ≤ π, i.e. cos θ_d + cos θ_b ≥ 0, and cos(θ_d + θ_b) ≥ cos θ_a.
+  const float cos_d = clamp(dot(a.w, b.w), -1.f, 1.f), sin_d = std::sqrt(1 - cos_d * cos_d);
+  const auto holds = [&](const LightBounds& outer, const LightBounds& inner) {
+    const float sin_i = std::sqrt(std::max(0.f, 1 - inner.cos_theta_o * inner.cos_theta_o));
+    return cos_d + inner.cos_theta_o >= 0 && cos_d * inner.cos_theta_o - sin_d * sin_i >= outer.cos_theta_o;
+  };
+  if (holds(a, b)) {
+    m.w = a.w, m.cos_theta_o = a.cos_theta_o;
+    return m;
+  }
+  if (holds(b, a)) {
+    m.w = b.w, m.cos_theta_o = b.cos_theta_o;
+    return m;
+  }
   const float theta_a = safe_acos(a.cos_theta_o), theta_b = safe_acos(b.cos_theta_o);
-  const float theta_d = safe_acos(dot(a.w, b.w));
+  const float theta_d = safe_acos(cos_d);
   if (std::min(theta_d + theta_b, kPi) <= theta_a) {
     m.w = a.w, m.cos_theta_o = a.cos_theta_o;
     return m;
