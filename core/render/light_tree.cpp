@@ -22,6 +22,10 @@ namespace {
 // The solid-angle measure of a cone of normals within θ_o, each emitting within θ_e about itself
 // (Conty Estevez & Kulla 2018, eq. 1): the orientation term of the split cost.
 float orientation_measure(const LightBounds& b) {
+  // The two ends in closed form (most cones of a build are one or the other): every direction,
+  // and a single one (π sin² θ_e).
+  if (b.cos_theta_o <= -1) return 4 * kPi;
+  if (b.cos_theta_o >= 1) return kPi * std::max(0.f, 1 - b.cos_theta_e * b.cos_theta_e);
   const float theta_o = safe_acos(b.cos_theta_o), theta_e = safe_acos(b.cos_theta_e);
   const float theta_w = std::min(theta_o + theta_e, kPi);
   const float sin_o = safe_sqrt(1 - b.cos_theta_o * b.cos_theta_o);
@@ -150,8 +154,45 @@ namespace {
 
 struct Item {
   uint32_t light;
+  Vec3f centroid;  // of its box: where the splits place it
   LightBounds bounds;
 };
+
+// Each bucket's bounds, for the split cost: the box, power and widest emission angle of its lights,
+// and a cone about their mean normal that holds every light's cone. Not always the smallest cone,
+// which pairwise merges come nearer to at the price of arc cosines per light: the buckets only
+// steer the split, and each node's own bounds are merged exactly from its children.
+template <int kBuckets, class BucketOf>
+std::array<LightBounds, kBuckets> bucket_bounds(const std::vector<Item>& items, size_t begin, size_t end,
+                                                const BucketOf& bucket_of) {
+  std::array<LightBounds, kBuckets> bucket{};
+  std::array<Vec3f, kBuckets> normal_sum{};
+  for (size_t i = begin; i < end; ++i) {
+    const LightBounds& light = items[i].bounds;
+    const size_t b = size_t(bucket_of(items[i]));
+    LightBounds& k = bucket[b];
+    k.cos_theta_e = k.phi == 0 ? light.cos_theta_e : std::min(k.cos_theta_e, light.cos_theta_e);
+    k.bounds.extend(light.bounds);
+    k.phi += light.phi;
+    k.two_sided = k.two_sided || light.two_sided;
+    normal_sum[b] += light.w * light.phi;
+  }
+  for (size_t b = 0; b < kBuckets; ++b) {
+    const float length2 = length_squared(normal_sum[b]);
+    bucket[b].w = length2 > 0 ? normal_sum[b] / std::sqrt(length2) : Vec3f(0.f, 0.f, 1.f);
+  }
+  // cos(θ_d + θ_o), the widest angle from the bucket's axis to a light's normals (every direction
+  // once the sum passes π: cos θ_d + cos θ_o ≤ 0).
+  for (size_t i = begin; i < end; ++i) {
+    const LightBounds& light = items[i].bounds;
+    LightBounds& k = bucket[size_t(bucket_of(items[i]))];
+    const float cos_d = clamp(dot(k.w, light.w), -1.f, 1.f), cos_o = light.cos_theta_o;
+    const float cos_sum =
+        cos_d + cos_o <= 0 ? -1.f : cos_d * cos_o - std::sqrt((1 - cos_d * cos_d) * std::max(0.f, 1 - cos_o * cos_o));
+    k.cos_theta_o = std::min(k.cos_theta_o, cos_sum);
+  }
+  return bucket;
+}
 
 // The binary tree over items[begin, end) in nodes[base, base + 2 (end − begin) − 1): its root at
 // base, then its first child's subtree, then its second's, so that subtrees are built apart, the
@@ -171,7 +212,7 @@ void build_binary(std::vector<Item>& items, size_t begin, size_t end, size_t bas
   Bounds3f box, centroids;
   for (size_t i = begin; i < end; ++i) {
     box.extend(items[i].bounds.bounds);
-    centroids.extend(items[i].bounds.bounds.centroid());
+    centroids.extend(items[i].centroid);
   }
   // The split of least cost between 12 buckets along an axis, by the lights' centroids.
   constexpr int kBuckets = 12;
@@ -179,26 +220,24 @@ void build_binary(std::vector<Item>& items, size_t begin, size_t end, size_t bas
   int best_axis = -1, best_bucket = -1;
   const auto bucket_of = [&](const Item& item, int axis) {
     const float extent = centroids.hi[axis] - centroids.lo[axis];
-    const int b = int(kBuckets * ((item.bounds.bounds.centroid()[axis] - centroids.lo[axis]) / extent));
+    const int b = int(kBuckets * ((item.centroid[axis] - centroids.lo[axis]) / extent));
     return std::clamp(b, 0, kBuckets - 1);
   };
   // Each axis's best split (its cost and bucket), the axes of a large range in parallel.
   std::array<std::pair<float, int>, 3> split;
   const auto best_along = [&](int axis) {
     split[size_t(axis)] = {kInfinity, -1};
-    if (!(centroids.hi[axis] > centroids.lo[axis]) || depth >= kSahDepth) return;
-    std::array<LightBounds, kBuckets> bucket{};
-    for (size_t i = begin; i < end; ++i) {
-      LightBounds& b = bucket[size_t(bucket_of(items[i], axis))];
-      b = merge(b, items[i].bounds);
-    }
+    if (!(centroids.hi[axis] > centroids.lo[axis]) || depth >= kSahDepth || end - begin == 2) return;
+    std::array<LightBounds, kBuckets> bucket =
+        bucket_bounds<kBuckets>(items, begin, end, [&](const Item& item) { return bucket_of(item, axis); });
     std::array<LightBounds, kBuckets> below{};  // buckets [0, i]
     below[0] = bucket[0];
     for (size_t i = 1; i < kBuckets; ++i) below[i] = merge(below[i - 1], bucket[i]);
     LightBounds above;  // buckets (i, kBuckets)
     for (int i = kBuckets - 2; i >= 0; --i) {
       above = merge(above, bucket[size_t(i) + 1]);
-      if (below[size_t(i)].phi == 0 || above.phi == 0) continue;
+      // (After an empty bucket, the split is the one before it.)
+      if (bucket[size_t(i)].phi == 0 || below[size_t(i)].phi == 0 || above.phi == 0) continue;
       const float cost = split_cost(below[size_t(i)], box, axis) + split_cost(above, box, axis);
       if (cost < split[size_t(axis)].first) split[size_t(axis)] = {cost, i};
     }
@@ -222,9 +261,7 @@ void build_binary(std::vector<Item>& items, size_t begin, size_t end, size_t bas
     const int axis = d.x >= d.y && d.x >= d.z ? 0 : d.y >= d.z ? 1 : 2;
     mid = (begin + end) / 2;
     std::nth_element(items.begin() + ptrdiff_t(begin), items.begin() + ptrdiff_t(mid), items.begin() + ptrdiff_t(end),
-                     [&](const Item& a, const Item& b) {
-                       return a.bounds.bounds.centroid()[axis] < b.bounds.bounds.centroid()[axis];
-                     });
+                     [&](const Item& a, const Item& b) { return a.centroid[axis] < b.centroid[axis]; });
   }
   const size_t first = base + 1, second = base + 2 * (mid - begin);
   const auto build_first = [&] { build_binary(items, begin, mid, first, depth + 1, nodes); };
@@ -249,7 +286,7 @@ LightTree::LightTree(std::span<const std::optional<LightBounds>> bounds, std::sp
       infinite_.push_back(i);
       top_power.push_back(power[i]);
     } else if (bounds[i]->phi > 0) {
-      items.push_back({i, *bounds[i]});
+      items.push_back({i, bounds[i]->bounds.centroid(), *bounds[i]});
       top_power[0] += power[i];
     }
   }
@@ -258,28 +295,87 @@ LightTree::LightTree(std::span<const std::optional<LightBounds>> bounds, std::sp
   if (items.size() >= (1u << 27)) fail("more than 2^27 emitters for the light tree");
   std::vector<Binary> binary(2 * items.size() - 1);
   build_binary(items, 0, items.size(), 0, 0, binary);
-  collapse(binary, 0, 0);
+  items = {};
+  collapse(binary, cheapest_cuts(binary), 0, 0);
 }
 
-// The node whose lanes are the binary tree's nodes below `root`, up to eight: the one with the most
-// lights below it opened while there is room. Lanes that stay empty have no power and an emission
-// angle no point is within (cos θ_e = 2).
-void LightTree::collapse(const std::vector<Binary>& binary, uint32_t root, uint32_t parent_lane) {
+namespace {
+
+constexpr uint64_t kNoCut = uint64_t(1) << 62;
+using Cut = std::array<uint64_t, LightTree::kWidth>;  // LightTree::Cuts
+
+// Of the ways to give `lanes` lanes to a binary node's two subtrees (cuts a and b), the cheapest:
+// the first subtree's share.
+int first_share(const Cut& a, const Cut& b, int lanes) {
+  int best = 1;
+  uint64_t least = kNoCut;
+  for (int first = 1; first < lanes; ++first) {
+    const uint64_t cost = a[size_t(first - 1)] + b[size_t(lanes - first - 1)];
+    if (cost < least) least = cost, best = first;
+  }
+  return best;
+}
+
+// The most lanes of the cheapest ways to open a binary node (of `lights`) as a wide node.
+int widest_cut(const Cut& c, uint32_t lights) {
+  int lanes = LightTree::kWidth;
+  while (c[size_t(lanes - 1)] + lights != c[0]) --lanes;
+  return lanes;
+}
+
+}  // namespace
+
+// cuts[v][k − 1]: the least traversal cost of binary node v's subtree when its top is cut into k
+// lanes (k = 1: v itself is the lane, a leaf or a wide node of its own). The cost is the number of
+// wide nodes a choice passes, summed over the lights: each wide node adds the lights below it. So
+// nodes come out full and the tree shallow where its lights are. From the leaves up (children come
+// after their parent in `binary`).
+std::vector<LightTree::Cuts> LightTree::cheapest_cuts(const std::vector<Binary>& binary) {
+  std::vector<Cuts> cuts(binary.size());
+  for (size_t v = binary.size(); v-- > 0;) {
+    Cuts& c = cuts[v];
+    c.fill(kNoCut);
+    if (binary[v].lights == 1) {
+      c[0] = 0;
+      continue;
+    }
+    const Cuts &a = cuts[binary[v].first], &b = cuts[binary[v].second];
+    uint64_t least = kNoCut;
+    for (int lanes = 2; lanes <= kWidth; ++lanes) {
+      const int first = first_share(a, b, lanes);
+      c[size_t(lanes - 1)] = std::min(kNoCut, a[size_t(first - 1)] + b[size_t(lanes - first - 1)]);
+      least = std::min(least, c[size_t(lanes - 1)]);
+    }
+    c[0] = least + binary[v].lights;
+  }
+  return cuts;
+}
+
+// The binary nodes that are the lanes when `v` is cut into `lanes` lanes, left to right.
+void LightTree::frontier(const std::vector<Binary>& binary, const std::vector<Cuts>& cuts, uint32_t v, int lanes,
+                         std::vector<uint32_t>& out) {
+  if (lanes == 1) {
+    out.push_back(v);
+    return;
+  }
+  const Binary& b = binary[v];
+  const int first = first_share(cuts[b.first], cuts[b.second], lanes);
+  frontier(binary, cuts, b.first, first, out);
+  frontier(binary, cuts, b.second, lanes - first, out);
+}
+
+// The node whose lanes are the binary tree's nodes below `root`: of the cheapest cuts into up to
+// eight lanes, the one of most lanes. Lanes that stay empty have no power and an emission angle no point is within (cos
+// θ_e = 2).
+void LightTree::collapse(const std::vector<Binary>& binary, const std::vector<Cuts>& cuts, uint32_t root,
+                         uint32_t parent_lane) {
   const uint32_t index = uint32_t(nodes_.size());
   nodes_.emplace_back();
   parent_.push_back(parent_lane);
   const LightBounds empty{Bounds3f{{0.f, 0.f, 0.f}, {0.f, 0.f, 0.f}}, {0.f, 0.f, 1.f}, 0.f, 1.f, 2.f};
   for (int lane = 0; lane < kWidth; ++lane) nodes_[index].set(lane, empty, kLeaf);
-  std::vector<uint32_t> lanes{root};
-  while (lanes.size() < size_t(kWidth)) {
-    size_t fullest = 0;
-    for (size_t i = 1; i < lanes.size(); ++i)
-      if (binary[lanes[i]].lights > binary[lanes[fullest]].lights) fullest = i;
-    const Binary& open = binary[lanes[fullest]];
-    if (open.lights == 1) break;
-    lanes[fullest] = open.first;
-    lanes.push_back(open.second);
-  }
+  std::vector<uint32_t> lanes;
+  frontier(binary, cuts, root, binary[root].lights == 1 ? 1 : widest_cut(cuts[root], binary[root].lights), lanes);
   for (int lane = 0; lane < int(lanes.size()); ++lane) {
     const Binary& b = binary[lanes[size_t(lane)]];
     if (b.lights == 1) {
@@ -287,7 +383,7 @@ void LightTree::collapse(const std::vector<Binary>& binary, uint32_t root, uint3
       place_[b.light] = index * kWidth + uint32_t(lane);
     } else {
       nodes_[index].set(lane, b.bounds, uint32_t(nodes_.size()));
-      collapse(binary, lanes[size_t(lane)], index * kWidth + uint32_t(lane));
+      collapse(binary, cuts, lanes[size_t(lane)], index * kWidth + uint32_t(lane));
     }
   }
 }
