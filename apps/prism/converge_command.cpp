@@ -31,7 +31,8 @@ struct ConvergeArgs {
   std::vector<std::string> integrators;     // one configuration each (default: the baseline and its variations)
   std::vector<std::string> light_samplers;  // or one configuration each, path traced
   std::string reference_integrator = "path";
-  double seconds = 0;  // equal-time comparison: each configuration renders this long
+  double seconds = 0;     // equal-time comparison: each configuration renders this long
+  bool relative = false;  // the error to reach: relative MSE's root instead of RMSE
 };
 
 struct Configuration {
@@ -140,16 +141,17 @@ struct Point {
   int spp;
   double seconds;
   ImageErrors e;
+  double error;  // the one the summary compares: RMSE, or the root of the relative MSE
 };
 
-// Seconds to reach an RMSE of `target`, interpolating log(seconds) against log(RMSE) between
+// Seconds to reach an error of `target`, interpolating log(seconds) against log(error) between
 // budgets; nothing if the series never gets there.
 std::optional<double> time_to_reach(const std::vector<Point>& series, double target) {
   for (size_t i = 0; i < series.size(); ++i) {
-    if (series[i].e.rmse > target) continue;
+    if (series[i].error > target) continue;
     if (i == 0) return series[0].seconds;
     const Point &a = series[i - 1], &b = series[i];
-    const double t = (std::log(target) - std::log(a.e.rmse)) / (std::log(b.e.rmse) - std::log(a.e.rmse));
+    const double t = (std::log(target) - std::log(a.error)) / (std::log(b.error) - std::log(a.error));
     return std::exp(std::log(a.seconds) + t * (std::log(b.seconds) - std::log(a.seconds)));
   }
   return std::nullopt;
@@ -159,7 +161,7 @@ std::optional<double> time_to_reach(const std::vector<Point>& series, double tar
 // variance halves with each doubling of spp; near 1 once the error is bias.
 double mse_per_doubling(const std::vector<Point>& series) {
   if (series.size() < 2) return 0.5;
-  const double r = series.back().e.rmse / series[series.size() - 2].e.rmse;
+  const double r = series.back().error / series[series.size() - 2].error;
   return r * r;
 }
 
@@ -233,7 +235,7 @@ void run(const ConvergeArgs& args) {
       options.spp = spp;
       RenderStats stats;
       const ImageErrors e = image_errors(render_rgb(worlds(config), p, options, &stats), reference);
-      series.back().push_back({spp, stats.seconds, e});
+      series.back().push_back({spp, stats.seconds, e, args.relative ? std::sqrt(e.relative_mse) : e.rmse});
       csv << '"' << config.name << "\"," << spp << ',' << stats.seconds << ',' << e.rmse << ',' << e.relative_mse << ','
           << e.mean_error << '\n';
       log::info("{:<44} {:>5} spp {:>8.3f} s  RMSE {:.5f}  relMSE {:.3e}  mean error {:+.5f}", config.name, spp,
@@ -242,23 +244,28 @@ void run(const ConvergeArgs& args) {
   }
   csv.close();
 
-  Plot plot{"RMSE against render time", "seconds", "RMSE", true, true, {}};
+  const std::string error_name = args.relative ? "relative RMSE" : "RMSE";
+  Plot plot{error_name + " against render time", "seconds", error_name, true, true, {}};
   for (size_t c = 0; c < configs.size(); ++c) {
     PlotSeries s{configs[c].name, {}, {}};
-    for (const Point& pt : series[c]) s.x.push_back(pt.seconds), s.y.push_back(pt.e.rmse);
+    for (const Point& pt : series[c]) s.x.push_back(pt.seconds), s.y.push_back(pt.error);
     plot.series.push_back(std::move(s));
   }
   write_plot_png(std::filesystem::path(args.out) / "convergence.png", plot);
 
   // The stated error: what the baseline reaches with its largest budget.
-  const double target = series[0].back().e.rmse;
+  const double target = series[0].back().error;
   std::ofstream md(std::filesystem::path(args.out) / "summary.md");
   md << "# Convergence: " << std::filesystem::path(args.scene.scene).filename().string() << "\n\n"
      << "Image " << p.camera->width() << "x" << p.camera->height() << ", reference `" << args.reference << "`"
      << " (mean " << reference_mean << "), max depth " << args.max_depth << ", budgets 1 to " << args.max_spp
-     << " spp. Error: RMSE over all pixels and channels (linear Rec.709).\n\n"
-     << "Stated error: RMSE " << target << " (the baseline at " << args.max_spp << " spp).\n\n"
-     << "| configuration | seconds to reach it | speed-up over the baseline | RMSE at " << args.max_spp
+     << " spp. Error: "
+     << (args.relative ? "relative RMSE, the root of the mean over all pixels and channels (linear Rec.709) of "
+                         "d² / (reference² + 0.01)"
+                       : "RMSE over all pixels and channels (linear Rec.709)")
+     << ".\n\n"
+     << "Stated error: " << error_name << " " << target << " (the baseline at " << args.max_spp << " spp).\n\n"
+     << "| configuration | seconds to reach it | speed-up over the baseline | " << error_name << " at " << args.max_spp
      << " spp | mean error at " << args.max_spp << " spp | MSE per doubling of spp |\n|---|---|---|---|---|---|\n";
   const auto baseline_time = time_to_reach(series[0], target);
   for (size_t c = 0; c < configs.size(); ++c) {
@@ -268,7 +275,7 @@ void run(const ConvergeArgs& args) {
     const bool biased = doubling > 0.8 || std::abs(last.e.mean_error) > 0.02 * reference_mean;
     md << "| " << configs[c].name << " | " << (t ? fmt::format("{:.3g}", *t) : std::string("not reached")) << " | "
        << (t && baseline_time && !biased ? fmt::format("{:.2f}x", *baseline_time / *t) : std::string("-")) << " | "
-       << fmt::format("{:.4g}", last.e.rmse) << " | " << fmt::format("{:+.3g}", last.e.mean_error) << " | "
+       << fmt::format("{:.4g}", last.error) << " | " << fmt::format("{:+.3g}", last.e.mean_error) << " | "
        << fmt::format("x{:.2f}{}", doubling, biased ? " (biased)" : "") << " |\n";
   }
   md << "\nAn unbiased configuration's MSE halves with each doubling of the sample budget (x0.50). One whose MSE "
@@ -324,6 +331,15 @@ void add_converge_command(CLI::App& app) {
                   "Equal time: render each configuration this many seconds and compare the errors")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--seed", args->seed, "Random seed")->default_val(0)->check(seed_value());
+  cmd->add_option_function<std::string>(
+         "--error", [args](const std::string& e) { args->relative = e == "relative"; },
+         "The error whose time to reach the summary compares: rmse (over all pixels and channels; bright pixels weigh "
+         "most) or "
+         "relative (each pixel's error over its reference value, the root of the relative MSE: dark and bright "
+         "pixels weigh alike)")
+      ->default_str("rmse")
+      ->check(CLI::IsMember({"rmse", "relative"}))
+      ->excludes(cmd->get_option("--seconds"));
   cmd->callback([args] { run(*args); });
 }
 

@@ -116,13 +116,15 @@ TEST_CASE("prism converge writes the error table, the plot and the summary") {
                         (dir / "ref.exr").string() + "\" --out \"" + dir.string() + "\"") == 1);
 }
 
-TEST_CASE("prism converge --light-samplers compares light samplers, and the header records the one rendered with") {
+TEST_CASE(
+    "prism converge --light-samplers compares light samplers by relative error, and the header records the one "
+    "rendered with") {
   const auto dir = test::temp_dir("converge_light_samplers");
   const std::string scene = "\"" PRISM_SOURCE_DIR "/data/scenes/lamp_hall.gltf\"";
   std::string err;
   int code = test::run_prism("converge " + scene + " --width 16 --height 9 --max-spp 2 --reference-spp 4 " +
-                                 "--light-samplers power,tree --reference \"" + (dir / "ref.exr").string() +
-                                 "\" --out \"" + dir.string() + "\"",
+                                 "--light-samplers power,tree --error relative --reference \"" +
+                                 (dir / "ref.exr").string() + "\" --out \"" + dir.string() + "\"",
                              &err);
   INFO(err);
   REQUIRE(code == 0);
@@ -131,6 +133,7 @@ TEST_CASE("prism converge --light-samplers compares light samplers, and the head
   summary << md.rdbuf();
   CHECK(summary.str().find("light sampler power") != std::string::npos);
   CHECK(summary.str().find("light sampler tree") != std::string::npos);
+  CHECK(summary.str().find("Stated error: relative RMSE") != std::string::npos);
   CHECK(test::run_prism("converge " + scene + " --width 16 --height 9 --light-samplers power,nearest --reference \"" +
                         (dir / "ref.exr").string() + "\" --out \"" + dir.string() + "\"") == 2);
   // A render logs the tree it built and names the sampler in the header.
