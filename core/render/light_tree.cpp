@@ -280,6 +280,7 @@ LightTree::LightTree(std::span<const std::optional<LightBounds>> bounds, std::sp
   place_.assign(bounds.size(), kOutside);
   std::vector<float> top_power{0.f};
   std::vector<Item> items;
+  items.reserve(bounds.size());
   for (uint32_t i = 0; i < bounds.size(); ++i) {
     if (!bounds[i]) {
       place_[i] = kOutside | uint32_t(top_power.size());
@@ -296,86 +297,30 @@ LightTree::LightTree(std::span<const std::optional<LightBounds>> bounds, std::sp
   std::vector<Binary> binary(2 * items.size() - 1);
   build_binary(items, 0, items.size(), 0, 0, binary);
   items = {};
-  collapse(binary, cheapest_cuts(binary), 0, 0);
+  collapse(binary, 0, 0);
 }
 
-namespace {
-
-constexpr uint64_t kNoCut = uint64_t(1) << 62;
-using Cut = std::array<uint64_t, LightTree::kWidth>;  // LightTree::Cuts
-
-// Of the ways to give `lanes` lanes to a binary node's two subtrees (cuts a and b), the cheapest:
-// the first subtree's share.
-int first_share(const Cut& a, const Cut& b, int lanes) {
-  int best = 1;
-  uint64_t least = kNoCut;
-  for (int first = 1; first < lanes; ++first) {
-    const uint64_t cost = a[size_t(first - 1)] + b[size_t(lanes - first - 1)];
-    if (cost < least) least = cost, best = first;
-  }
-  return best;
-}
-
-// The most lanes of the cheapest ways to open a binary node (of `lights`) as a wide node.
-int widest_cut(const Cut& c, uint32_t lights) {
-  int lanes = LightTree::kWidth;
-  while (c[size_t(lanes - 1)] + lights != c[0]) --lanes;
-  return lanes;
-}
-
-}  // namespace
-
-// cuts[v][k − 1]: the least traversal cost of binary node v's subtree when its top is cut into k
-// lanes (k = 1: v itself is the lane, a leaf or a wide node of its own). The cost is the number of
-// wide nodes a choice passes, summed over the lights: each wide node adds the lights below it. So
-// nodes come out full and the tree shallow where its lights are. From the leaves up (children come
-// after their parent in `binary`).
-std::vector<LightTree::Cuts> LightTree::cheapest_cuts(const std::vector<Binary>& binary) {
-  std::vector<Cuts> cuts(binary.size());
-  for (size_t v = binary.size(); v-- > 0;) {
-    Cuts& c = cuts[v];
-    c.fill(kNoCut);
-    if (binary[v].lights == 1) {
-      c[0] = 0;
-      continue;
-    }
-    const Cuts &a = cuts[binary[v].first], &b = cuts[binary[v].second];
-    uint64_t least = kNoCut;
-    for (int lanes = 2; lanes <= kWidth; ++lanes) {
-      const int first = first_share(a, b, lanes);
-      c[size_t(lanes - 1)] = std::min(kNoCut, a[size_t(first - 1)] + b[size_t(lanes - first - 1)]);
-      least = std::min(least, c[size_t(lanes - 1)]);
-    }
-    c[0] = least + binary[v].lights;
-  }
-  return cuts;
-}
-
-// The binary nodes that are the lanes when `v` is cut into `lanes` lanes, left to right.
-void LightTree::frontier(const std::vector<Binary>& binary, const std::vector<Cuts>& cuts, uint32_t v, int lanes,
-                         std::vector<uint32_t>& out) {
-  if (lanes == 1) {
-    out.push_back(v);
-    return;
-  }
-  const Binary& b = binary[v];
-  const int first = first_share(cuts[b.first], cuts[b.second], lanes);
-  frontier(binary, cuts, b.first, first, out);
-  frontier(binary, cuts, b.second, lanes - first, out);
-}
-
-// The node whose lanes are the binary tree's nodes below `root`: of the cheapest cuts into up to
-// eight lanes, the one of most lanes. Lanes that stay empty have no power and an emission angle no point is within (cos
-// θ_e = 2).
-void LightTree::collapse(const std::vector<Binary>& binary, const std::vector<Cuts>& cuts, uint32_t root,
-                         uint32_t parent_lane) {
+// The node whose lanes are the binary tree's nodes below `root`, up to eight: the one with the most
+// lights below it opened while there is room. So each choice is among eight groups as alike as the
+// tree allows; cuts that pack the nodes fuller put uneven groups side by side, and cost more noise
+// than the memory they save. Lanes that stay empty have no power and an emission
+// angle no point is within (cos θ_e = 2).
+void LightTree::collapse(const std::vector<Binary>& binary, uint32_t root, uint32_t parent_lane) {
   const uint32_t index = uint32_t(nodes_.size());
   nodes_.emplace_back();
   parent_.push_back(parent_lane);
   const LightBounds empty{Bounds3f{{0.f, 0.f, 0.f}, {0.f, 0.f, 0.f}}, {0.f, 0.f, 1.f}, 0.f, 1.f, 2.f};
   for (int lane = 0; lane < kWidth; ++lane) nodes_[index].set(lane, empty, kLeaf);
-  std::vector<uint32_t> lanes;
-  frontier(binary, cuts, root, binary[root].lights == 1 ? 1 : widest_cut(cuts[root], binary[root].lights), lanes);
+  std::vector<uint32_t> lanes{root};
+  while (lanes.size() < size_t(kWidth)) {
+    size_t fullest = 0;
+    for (size_t i = 1; i < lanes.size(); ++i)
+      if (binary[lanes[i]].lights > binary[lanes[fullest]].lights) fullest = i;
+    const Binary& open = binary[lanes[fullest]];
+    if (open.lights == 1) break;
+    lanes[fullest] = open.first;
+    lanes.push_back(open.second);
+  }
   for (int lane = 0; lane < int(lanes.size()); ++lane) {
     const Binary& b = binary[lanes[size_t(lane)]];
     if (b.lights == 1) {
@@ -383,7 +328,7 @@ void LightTree::collapse(const std::vector<Binary>& binary, const std::vector<Cu
       place_[b.light] = index * kWidth + uint32_t(lane);
     } else {
       nodes_[index].set(lane, b.bounds, uint32_t(nodes_.size()));
-      collapse(binary, cuts, lanes[size_t(lane)], index * kWidth + uint32_t(lane));
+      collapse(binary, lanes[size_t(lane)], index * kWidth + uint32_t(lane));
     }
   }
 }

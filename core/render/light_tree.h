@@ -5,8 +5,8 @@
 // (LightBounds). The light for a shading point is found by descending from the root, each child
 // taken with probability in proportion to its importance at the point; a light's probability at
 // any point is the product along its path from the root, so MIS with BSDF sampling stays exact.
-// The binary tree the cost model builds is collapsed to nodes of eight children, those a choice
-// passes as few as can be, whose importances are computed together (one vector pass per level, a third of the levels).
+// The binary tree the cost model builds is collapsed to nodes of eight children, whose
+// importances are computed together (one vector pass per level, a third of the levels).
 // Infinite lights (directional, environment) stay outside the tree: the tree and each of them are
 // chosen first by power, as PowerLightSampler chooses.
 
@@ -70,11 +70,7 @@ class LightTree {
   static constexpr uint32_t kLeaf = 1u << 31;
 
   struct Binary;  // the tree as built, before collapsing
-  using Cuts = std::array<uint64_t, kWidth>;
-  static std::vector<Cuts> cheapest_cuts(const std::vector<Binary>& binary);
-  static void frontier(const std::vector<Binary>& binary, const std::vector<Cuts>& cuts, uint32_t v, int lanes,
-                       std::vector<uint32_t>& out);
-  void collapse(const std::vector<Binary>& binary, const std::vector<Cuts>& cuts, uint32_t root, uint32_t parent_lane);
+  void collapse(const std::vector<Binary>& binary, uint32_t root, uint32_t parent_lane);
 
   PowerLightSampler top_;           // slot 0: the tree; then the infinite lights
   std::vector<uint32_t> infinite_;  // the light in top_'s slot 1 + i
