@@ -142,9 +142,10 @@ void add_gltf_options(CLI::App* cmd, GltfOptions& options) {
                   "Render the file's N-th scene (0-based; default: the file's `scene`, else 0)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--variant", options.variant, "KHR_materials_variants: use the material variant NAME");
-  cmd->add_option("--time", options.time, "Pose the animations at SECONDS (default: the file's own pose)");
+  cmd->add_option("--time", options.time, "Pose the animation at SECONDS (default: the file's own pose)");
   cmd->add_option("--animation", options.animation,
-                  "Play only this animation, by name or 0-based index (default: all)");
+                  "The animation --time and --frames play: a name, a 0-based index, or all (every animation at "
+                  "once; default: the first, as viewers play a file)");
   cmd->add_flag("--allow-external-paths", options.allow_external_paths,
                 "Let the scene's URIs name files outside its folder (off: such files are refused)");
 }

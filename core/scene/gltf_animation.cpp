@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "core/base/error.h"
 #include "core/base/log.h"
@@ -231,6 +232,25 @@ void animate(const Animation& animation, double time, std::vector<NodePose>& pos
         break;
     }
   }
+}
+
+void warn_of_shared_targets(const std::vector<Animation>& animations, const tinygltf::Model& model,
+                            const std::string& file) {
+  static constexpr const char* kPath[] = {"translation", "rotation", "scale", "weights"};
+  std::map<std::pair<int, AnimationChannel::Path>, size_t> driver;  // the first animation that drives each
+  size_t shared = 0;
+  std::string first;
+  for (size_t a = 0; a < animations.size(); ++a)
+    for (const AnimationChannel& c : animations[a].channels) {
+      const auto [it, added] = driver.try_emplace({c.node, c.path}, a);
+      if (added || it->second == a) continue;
+      if (shared++ == 0)
+        first = fmt::format("'{}' and '{}' both set node {} ('{}') {}", animations[it->second].name, animations[a].name,
+                            c.node, model.nodes[size_t(c.node)].name, kPath[int(c.path)]);
+    }
+  if (shared > 0)
+    log::warn("{}: animations {}{}: played together, the later one wins (choose one with --animation)", file, first,
+              shared > 1 ? fmt::format(", and {} more such channels", shared - 1) : "");
 }
 
 }  // namespace prism

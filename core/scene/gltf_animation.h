@@ -66,6 +66,12 @@ int find_animation(const std::vector<Animation>& animations, const std::string& 
 // `quaternion`: rotations are slerped (LINEAR) and normalised (CUBICSPLINE).
 std::vector<double> sample(const AnimationSampler& sampler, double time, bool quaternion);
 
+// Warns when channels of different animations set the same property of a node: played together,
+// the later animation's value wins, which is rarely what the file means (a walk and a run of one
+// skeleton).
+void warn_of_shared_targets(const std::vector<Animation>& animations, const tinygltf::Model& model,
+                            const std::string& file);
+
 // Sets every channel of `animation` at `time` in `pose`.
 void animate(const Animation& animation, double time, std::vector<NodePose>& pose);
 

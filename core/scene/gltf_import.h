@@ -125,7 +125,7 @@ class GltfLoader {
   Scene& scene_;
   int scene_index_ = 0;
   int variant_ = -1;    // KHR_materials_variants index, -1: default materials
-  int animation_ = -1;  // the animation to play, -1: all
+  int animation_ = -1;  // the animation a time plays, -1: all (or the file has none)
   std::optional<double> time_;
   std::vector<Animation> animations_;
   std::vector<NodePose> pose_;

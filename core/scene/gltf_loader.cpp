@@ -94,9 +94,17 @@ void GltfLoader::choose(const GltfOptions& options) {
     fail("{}: --scene {} requested, but the file has {} scene(s)", file_, *options.scene, model_.scenes.size());
   if (!options.variant.empty()) variant_ = find_variant(model_, options.variant, file_);
   animations_ = read_animations(model_, file_);
-  if (!options.animation.empty()) animation_ = find_animation(animations_, options.animation, file_);
+  const bool named = !options.animation.empty() && options.animation != "all";
+  if (named)
+    animation_ = find_animation(animations_, options.animation, file_);
+  else if (options.animation.empty() && !animations_.empty())
+    animation_ = 0;
+  if (options.animation.empty() && animations_.size() > 1)
+    log::info("{}: {} animations; a time plays the first, '{}' (--animation NAME, INDEX or all to choose)", file_,
+              animations_.size(), animations_[0].name);
+  if (animation_ < 0) warn_of_shared_targets(animations_, model_, file_);
   time_ = options.time;
-  if (!time_ && animation_ >= 0) time_ = animations_[animation_].start;
+  if (!time_ && named) time_ = animations_[size_t(animation_)].start;
   if (time_ && !std::isfinite(*time_)) fail("{}: the time must be a finite number of seconds", file_);
 }
 

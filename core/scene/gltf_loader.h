@@ -19,8 +19,10 @@ namespace prism {
 struct GltfOptions {
   std::optional<int> scene;    // default: the file's `scene`, else 0
   std::string variant;         // KHR_materials_variants name; empty: the default materials
-  std::optional<double> time;  // pose the animations at this time [s]; unset: the file's own pose
-  std::string animation;       // a name or 0-based index; empty: every animation
+  std::optional<double> time;  // pose the animation at this time [s]; unset: the file's own pose
+  // The animation a time plays: a name or 0-based index, or "all" (every animation at once);
+  // empty: the first, as viewers play a file.
+  std::string animation;
   // Limits for untrusted files:
   bool allow_external_paths = false;           // URIs may name files outside the scene file's folder
   uint64_t max_instances = uint64_t(1) << 32;  // more node visits and mesh instances than this are refused

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
 #include "core/base/log.h"
 #include "core/scene/gltf_loader.h"
@@ -172,10 +173,12 @@ TEST_CASE("animation channels at a time between keys: STEP, LINEAR with slerp, C
   // Before the first key and after the last, the end values hold.
   check_near(world_vertex(at(file, -3, "step"), 0, 0), {1, 2, 3});
   check_near(world_vertex(at(file, 9, "cubic"), 0, 1), {7, 0, 0});
-  // Every animation at once by default; without a time, the file's own pose.
+  // The first animation by default, as viewers play a file; every one at once with "all". Without a
+  // time, the file's own pose.
+  check_near(world_vertex(at(file, 2, ""), 0, 0), {5, 6, 7});  // "step" alone: moved by (5, 6, 7)
   // At t = 2, vertex 0 lifted to (0, 0, 1) by weight 1, scaled to (0, 0, 9), turned 90° about +y
   // to (9, 0, 0), moved by (5, 6, 7).
-  check_near(world_vertex(at(file, 2, ""), 0, 0), {14, 6, 7});
+  check_near(world_vertex(at(file, 2, "all"), 0, 0), {14, 6, 7});
   check_near(world_vertex(load_gltf(file), 0, 1), {1, 0, 0});
   CHECK_THROWS_WITH(at(file, 0, "walk"), Catch::Contains("animated.gltf") && Catch::Contains("no animation 'walk'") &&
                                              Catch::Contains("'linear'"));
@@ -216,4 +219,28 @@ TEST_CASE("prism render --frames renders an animation's frames to a numbered seq
   CHECK(test::run_prism(common + " -o \"" + (dir / "bad.#.exr").string() + "\" --frames 0:1 --time 1") == 2);
   CHECK(test::run_prism(common + " -o \"" + (dir / "bad.#.exr").string() + "\" --frames 0:1 --fps 0") == 1);
   CHECK_FALSE(std::filesystem::exists(dir / "bad.0.exr"));
+}
+
+TEST_CASE("animations that set the same property are named when played together, and the first plays alone") {
+  const auto dir = test::temp_dir("gltf_animation_shared");
+  // The "cubic" animation made to move the node, as "step" does: a walk and a run of one skeleton.
+  std::ifstream in(test::write_animated_triangle(dir));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string json = text.str();
+  const std::string scale = R"("path": "scale")";
+  REQUIRE(json.find(scale) != std::string::npos);
+  json.replace(json.find(scale), scale.size(), R"("path": "translation")");
+  const auto file = dir / "shared.gltf";
+  std::ofstream(file) << json;
+  const std::string info = "info \"" + file.string() + "\" --time 1";
+  std::string err;
+  REQUIRE(test::run_prism(info + " --animation all", &err) == 0);
+  CHECK_THAT(err, Catch::Contains("shared.gltf: animations 'step' and 'cubic' both set node 0") &&
+                      Catch::Contains("translation") && Catch::Contains("the later one wins"));
+  REQUIRE(test::run_prism(info, &err) == 0);  // the first alone: nothing is set twice
+  CHECK_THAT(err,
+             !Catch::Contains("the later one wins") && Catch::Contains("3 animations; a time plays the first, 'step'"));
+  REQUIRE(test::run_prism(info + " --animation cubic", &err) == 0);
+  CHECK_THAT(err, !Catch::Contains("the later one wins") && !Catch::Contains("3 animations"));
 }
