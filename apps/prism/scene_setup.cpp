@@ -105,6 +105,7 @@ void add_scene_options(CLI::App* cmd, SceneArgs& args) {
       ->check(positive_count());
   cmd->add_option("--camera", args.camera, "Use the N-th camera in scene order (0-based; default: the first)")
       ->check(CLI::NonNegativeNumber);
+  add_lens_options(cmd, args.lens);
   add_gltf_options(cmd, args.gltf);
   CLI::Option* env =
       cmd->add_option("--env", args.env, "Constant environment radiance as linear Rec.709 R,G,B (e.g. 1,1,1)");
@@ -135,6 +136,30 @@ void add_scene_options(CLI::App* cmd, SceneArgs& args) {
   cmd->add_option("--light-sampler", args.light_sampler, help)
       ->transform(CLI::CheckedTransformer(samplers))
       ->default_str(std::string(light_sampler_name(kDefaultLightSampler)));
+}
+
+void add_lens_options(CLI::App* cmd, LensDesc& lens) {
+  const auto positive = CLI::Range(1e-30, 1e30);
+  CLI::Option* aperture =
+      cmd->add_option("--aperture", lens.f_number,
+                      "Depth of field: the aperture as an f-number (e.g. 2.8), of the focal length the field of view "
+                      "makes on a --sensor-width film")
+          ->check(positive);
+  cmd->add_option("--sensor-width", lens.sensor_width, "The film's width in millimetres, for --aperture (default 36)")
+      ->check(positive)
+      ->needs(aperture);
+  cmd->add_option("--lens-radius", lens.radius, "Depth of field: the lens radius in scene units (metres)")
+      ->check(CLI::Range(0.0, 1e30))
+      ->excludes(aperture);
+  CLI::Option* distance =
+      cmd->add_option("--focus-distance", lens.focus_distance,
+                      "The plane in focus, this far along the view axis (default: through the centre of the scene)")
+          ->check(positive);
+  cmd->add_option("--focus-node", lens.focus_node, "Focus on the plane through this node's origin")->excludes(distance);
+  cmd->add_option("--blades", lens.blades, "A polygonal aperture of N blades (0: round, the default)")
+      ->check(CLI::Range(0, 1000));
+  cmd->add_option("--blade-rotation", lens.blade_rotation, "Turn the aperture polygon by DEG degrees")
+      ->check(CLI::Range(-1e6, 1e6));
 }
 
 void add_gltf_options(CLI::App* cmd, GltfOptions& options) {
@@ -188,18 +213,36 @@ void add_render_options(CLI::App* cmd, RenderOptions& options, std::string& inte
 
 namespace {
 
+// Each lens setting the command line gives, over the camera's own.
+void over(LensDesc& lens, const LensDesc& given) {
+  if (given.f_number) lens.f_number = given.f_number, lens.radius.reset();
+  if (given.radius) lens.radius = given.radius, lens.f_number.reset();
+  if (given.sensor_width) lens.sensor_width = given.sensor_width;
+  if (given.focus_distance) lens.focus_distance = given.focus_distance, lens.focus_node.reset();
+  if (given.focus_node) lens.focus_node = given.focus_node, lens.focus_distance.reset();
+  if (given.blades) lens.blades = given.blades;
+  if (given.blade_rotation) lens.blade_rotation = given.blade_rotation;
+}
+
 // The camera for the scene as posed: the file's (which may move), or one framing the scene, which
 // stays as the first pose framed it.
 void place_camera(PreparedScene& p, const SceneArgs& args) {
   const Scene& scene = p.gltf->scene();
   if (!p.camera || !scene.cameras.empty()) {
-    const CameraDesc camera_desc = choose_camera(scene, args);
+    CameraDesc camera_desc = choose_camera(scene, args);
+    over(camera_desc.lens, args.lens);
     const Vec2i size = resolve_resolution(args.width, args.height, camera_desc);
     const uint64_t max_memory = max_memory_bytes(args);
     if (uint64_t(size.x) * uint64_t(size.y) > max_memory / kBytesPerPixel)
       fail("{}: a {}x{} image needs about {:.3g} GB, more than --max-memory {:.3g} GB", args.scene, size.x, size.y,
            double(size.x) * size.y * kBytesPerPixel / 1e9, max_memory / 1e9);
-    p.camera = std::make_unique<Camera>(camera_desc, size.x, size.y);
+    const bool first = !p.camera;
+    p.camera = std::make_unique<Camera>(camera_desc, size.x, size.y, thin_lens(camera_desc, scene, size));
+    if (first && p.camera->has_lens()) {
+      const ThinLens& l = p.camera->lens();
+      log::info("depth of field: lens radius {:.4g}, in focus at {:.4g} along the view axis{}", l.radius,
+                l.focus_distance, l.blades >= 3 ? fmt::format(", {} blades", l.blades) : std::string());
+    }
   }
 }
 

@@ -19,6 +19,7 @@ struct SceneArgs {
   double max_memory_gb = 0;         // 0: the machine's physical memory
   bool energy_compensation = true;  // off: --no-energy-compensation (single-scattering microfacets)
   LightSamplerKind light_sampler = kDefaultLightSampler;  // --light-sampler
+  LensDesc lens;  // --aperture, --lens-radius, --focus-distance, …: over the camera's own
 };
 
 // Bytes Prism budgets per pixel of the image and per mesh instance (scene, BVH, world), to refuse
@@ -33,11 +34,15 @@ const CLI::Validator& positive_count();
 const CLI::Validator& seed_value();
 
 // The scene file (positional), --env / --env-map / --env-rotate / --env-scale / --env-spectrum, --width,
-// --height, --camera, --no-energy-compensation, --light-sampler, and the glTF choices of add_gltf_options.
+// --height, --camera and its lens (add_lens_options), --no-energy-compensation, --light-sampler, and the
+// glTF choices of add_gltf_options.
 void add_scene_options(CLI::App* cmd, SceneArgs& args);
 
 // --scene, --variant, --time, --animation and --allow-external-paths.
 void add_gltf_options(CLI::App* cmd, GltfOptions& options);
+
+// --aperture, --sensor-width, --lens-radius, --focus-distance, --focus-node, --blades, --blade-rotation.
+void add_lens_options(CLI::App* cmd, LensDesc& lens);
 
 // --spp, --seed, --threads, --max-depth, --integrator (its name, or "auto": resolve_integrator), --merge-radius,
 // --wavelengths, --sampler, --light-sampling.

@@ -1,6 +1,7 @@
 #pragma once
 // Warps from the unit square to directions and points, each with its pdf.
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/base/vec.h"
@@ -60,6 +61,17 @@ inline Vec3f sample_uniform_triangle(Vec2f u) {
     b0 = u.x - b1;
   }
   return {b0, b1, 1 - b0 - b1};
+}
+
+// Uniform on the regular polygon of `sides` ≥ 3 vertices on the unit circle, the first at angle
+// `rotation` [radians]: u.x picks a wedge (centre and two neighbouring vertices), the rest of u.x
+// and u.y a point uniform in it. (Its area, (sides/2) sin(2π/sides), is less than the disk's π.)
+inline Vec2f sample_uniform_polygon(Vec2f u, int sides, float rotation) {
+  const float scaled = u.x * float(sides);
+  const int wedge = std::min(int(scaled), sides - 1);
+  const float a0 = rotation + 2 * kPi * float(wedge) / float(sides), a1 = a0 + 2 * kPi / float(sides);
+  const Vec3f b = sample_uniform_triangle({scaled - float(wedge), u.y});
+  return Vec2f(std::cos(a0), std::sin(a0)) * b.y + Vec2f(std::cos(a1), std::sin(a1)) * b.z;  // b.x: the centre
 }
 
 }  // namespace prism

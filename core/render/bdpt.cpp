@@ -189,13 +189,14 @@ SampledSpectrum<N> connect_vertices(const BdptScene& scene, const SurfaceInterac
   return r;
 }
 
-// t = 1: light vertex v seen by the camera, splatted where it lands on the film (eqs. 46–47):
-// β · f · |cos| · (camera ray density across the ray at v) / (light paths per pixel sample).
+// t = 1: light vertex v seen by the camera through the aperture point u_lens picks, splatted where
+// it lands on the film (eqs. 46–47): β · f · |cos| · (camera ray density across the ray at v) /
+// (light paths per pixel sample).
 template <int N>
-void splat_to_camera(const BdptScene& scene, const LightVertex<N>& v, const MisFactors& factors,
+void splat_to_camera(const BdptScene& scene, const LightVertex<N>& v, Vec2f u_lens, const MisFactors& factors,
                      const SampledWavelengths<N>& lambda, SplatBuffer& splats, RayCounters& counters,
                      uint64_t& invalid) {
-  const auto c = scene.camera.connect(v.si.p);
+  const auto c = scene.camera.connect(v.si.p, u_lens);
   if (!c) return;
   const Vec3f wl = v.frame.to_local(c->w);
   if (wrong_side(v.si, c->w, wl.z * v.wo.z < 0)) return;
@@ -232,8 +233,11 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, const SampledW
   thread_local std::vector<LightVertex<N>> light;
   SampledWavelengths<N> light_lambda = lambda, camera_lambda = lambda;  // each subpath terminates its own
   trace_light_path(scene, light_lambda, sampler, options, factors, counters, light);
-  // t = 1: the light path seen by the camera.
-  for (const LightVertex<N>& v : light) splat_to_camera(scene, v, factors, lambda, splats, counters, invalid);
+  // t = 1: the light path seen by the camera (through an aperture point of its own, with a lens).
+  for (const LightVertex<N>& v : light) {
+    const Vec2f u_lens = scene.camera.has_lens() ? sampler.get_2d() : Vec2f{};
+    splat_to_camera(scene, v, u_lens, factors, lambda, splats, counters, invalid);
+  }
 
   const World& world = scene.world;
   const LightSampler& lights = world.light_sampler();

@@ -1,8 +1,9 @@
 #pragma once
 // One camera sample of a pixel: its camera ray, its wavelengths, the integrator's estimate of the
 // radiance they carry, and what the film keeps of it (CIE XYZ; with AOVs, what the first surface
-// shows). The sampler's first dimension jitters the ray in the pixel, its second draws the
-// wavelengths, and the integrator takes the rest.
+// shows). The sampler's first dimension jitters the ray in the pixel, the next picks a thin lens's
+// aperture point (a pinhole draws none), the next draws the wavelengths, and the integrator takes
+// the rest.
 
 #include <new>
 #include <optional>
@@ -22,11 +23,13 @@ struct CameraSample {
   Xyz xyz;
 };
 
-// The camera ray of sample s of a pixel: the sampler's first dimension jitters it in the pixel.
+// The camera ray of sample s of a pixel: the sampler's first dimension jitters it in the pixel,
+// and a thin lens's aperture point is the next.
 inline Ray camera_ray(const Camera& camera, Sampler& sampler, Vec2i pixel, int s) {
   sampler.start_sample(s);
   const Vec2f jitter = sampler.get_2d();
-  return camera.generate_ray(float(pixel.x) + jitter.x, float(pixel.y) + jitter.y);
+  const Vec2f lens = camera.has_lens() ? sampler.get_2d() : Vec2f{};
+  return camera.generate_ray(float(pixel.x) + jitter.x, float(pixel.y) + jitter.y, lens);
 }
 
 // A sample's camera ray (camera_ray) through the radiance estimator to CIE XYZ, from the sampler's

@@ -14,6 +14,7 @@ std::optional<Xyz> sky_xyz(const World& world, bool first_hit, bool spectral_bin
 
 std::vector<uint8_t> sky_pixels(const World& world, const Camera& camera) {
   std::vector<uint8_t> sky(size_t(camera.width()) * camera.height(), 0);
+  if (camera.has_lens()) return sky;  // its rays leave the whole aperture: none is known to miss
   const TileGrid grid(camera);
   parallel_for(grid.count(), [&](int64_t t) {
     const TileGrid::Tile tile = grid[t];

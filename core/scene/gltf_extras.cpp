@@ -183,4 +183,43 @@ Spectrum GltfLoader::light_emission(const tinygltf::Light& light, Rgb rgb, const
   return spectrum_with_luminance(it->second, luminance(rgb));
 }
 
+LensDesc GltfLoader::camera_lens(const tinygltf::Camera& camera, const std::string& context) {
+  const std::string where = fmt::format("{}: camera '{}'", context, camera.name);
+  const Json* prism = prism_extras(document_, {"cameras", std::to_string(&camera - model_.cameras.data())}, where);
+  LensDesc lens;
+  if (!prism) return lens;
+  const auto number = [&](const std::string& key, const Json& v, bool positive) {
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || std::abs(v.get<double>()) > 1e30 ||
+        (positive ? !(v.get<double>() > 0) : false))
+      fail("{}: extras.prism.{} must be a {}finite number", where, key, positive ? "positive, " : "");
+    return float(v.get<double>());
+  };
+  for (const auto& [key, v] : prism->items()) {
+    if (key == "aperture") {
+      lens.f_number = number(key, v, true);
+    } else if (key == "sensor_width") {
+      lens.sensor_width = number(key, v, true);
+    } else if (key == "lens_radius") {
+      lens.radius = number(key, v, false);
+      if (*lens.radius < 0) fail("{}: extras.prism.lens_radius must not be negative", where);
+    } else if (key == "focus_distance") {
+      lens.focus_distance = number(key, v, true);
+    } else if (key == "focus_node") {
+      if (!v.is_string()) fail("{}: extras.prism.focus_node must be a node's name", where);
+      lens.focus_node = v.get<std::string>();
+    } else if (key == "blades") {
+      if (!v.is_number_integer() || v.get<int64_t>() < 0 || v.get<int64_t>() > 1000)
+        fail("{}: extras.prism.blades must be a whole number from 0 to 1000", where);
+      lens.blades = int(v.get<int64_t>());
+    } else if (key == "blade_rotation") {
+      lens.blade_rotation = number(key, v, false);
+    } else {
+      warn_once(fmt::format("{}: unknown key extras.prism.{} ignored", where, key));
+    }
+  }
+  if (lens.f_number && lens.radius) fail("{}: extras.prism gives both aperture and lens_radius", where);
+  if (lens.focus_distance && lens.focus_node) fail("{}: extras.prism gives both focus_distance and focus_node", where);
+  return lens;
+}
+
 }  // namespace prism

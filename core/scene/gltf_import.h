@@ -81,6 +81,8 @@ class GltfLoader {
   // light's emission spectrum (read once per light), a refractiveindex.info file an extra names
   void material_extras(const tinygltf::Material& m, int index, Material& out, const std::string& context);
   Spectrum light_emission(const tinygltf::Light& light, Rgb rgb, const std::string& context);
+  // A camera's thin lens from its extras.prism (none: a pinhole).
+  LensDesc camera_lens(const tinygltf::Camera& camera, const std::string& context);
   OpticalConstants optical_constants_file(const nlohmann::json& uri, const std::string& what);
   uint32_t material_index(int gltf_material, const std::string& context);
   Rgb clamp_emission(const std::array<double, 3>& rgb, const std::string& context);

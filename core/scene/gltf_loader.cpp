@@ -134,6 +134,7 @@ bool GltfLoader::pose(double time) {
 void GltfLoader::build() {
   scene_.instances.clear();
   scene_.named_nodes.clear();
+  scene_.node_origins.clear();
   scene_.cameras.clear();
   scene_.point_lights.clear();
   scene_.spot_lights.clear();

@@ -93,6 +93,7 @@ void GltfLoader::traverse_scene() {
       }
     if (!node.name.empty() && scene_.instances.size() > first_instance)
       scene_.named_nodes.push_back({node.name, first_instance, uint32_t(scene_.instances.size())});
+    if (!node.name.empty()) scene_.node_origins.emplace_back(node.name, Vec3f(world.point({0, 0, 0})));
     if (node.camera >= 0) {
       check_index(node.camera, model_.cameras, "camera", context);
       add_camera(model_.cameras[node.camera], world, context);
@@ -173,6 +174,7 @@ void GltfLoader::add_camera(const tinygltf::Camera& cam, const Transform& world,
   CameraDesc c;
   c.name = cam.name;
   c.to_world = world;
+  c.lens = camera_lens(cam, context);
   if (cam.type == "perspective") {
     c.yfov = float(cam.perspective.yfov);
     if (!(c.yfov > 0 && c.yfov < kPi))

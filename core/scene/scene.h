@@ -51,6 +51,18 @@ struct Mesh {
 // Basis Vectors for an Arbitrary Mesh"), for normal maps on meshes that bring none.
 void generate_tangents(Mesh& mesh, int uv_set);
 
+// A thin lens for depth of field, as a camera's extras give it (README, "Depth of field"); the
+// command line's options replace it field by field. None set: a pinhole.
+struct LensDesc {
+  std::optional<float> f_number;          // the aperture as an f-number, of the focal length the
+  std::optional<float> sensor_width;      // field of view makes on a film this wide [mm] (default 36),
+  std::optional<float> radius;            // or the lens radius [scene units]
+  std::optional<float> focus_distance;    // the plane in focus, this far along the view axis [scene units],
+  std::optional<std::string> focus_node;  // or through this node's origin
+  std::optional<int> blades;              // a polygonal aperture of this many blades (0: round)
+  std::optional<float> blade_rotation;    // [degrees]
+};
+
 struct CameraDesc {
   enum class Projection { perspective, orthographic };
   std::string name;
@@ -59,6 +71,7 @@ struct CameraDesc {
   float yfov = 0.f;              // perspective: vertical field of view [radians]
   std::optional<float> aspect;   // width / height, if the file gives one
   float xmag = 1.f, ymag = 1.f;  // orthographic half extents
+  LensDesc lens;
 };
 
 // Punctual lights (KHR_lights_punctual). Units as in the README: luminance Y = 1 ↔ 1 cd/m² for
@@ -113,7 +126,8 @@ struct Scene {
   uint64_t source_hash = 0;  // FNV-1a of the source file and every file its URIs name (gltf_file.h)
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;
-  std::vector<NamedInstances> named_nodes;  // nodes with a name and a mesh, in traversal order
+  std::vector<NamedInstances> named_nodes;                  // nodes with a name and a mesh, in traversal order
+  std::vector<std::pair<std::string, Vec3f>> node_origins;  // every named node's origin, in traversal order
   std::vector<Material> materials;
   std::vector<PointLight> point_lights;
   std::vector<SpotLight> spot_lights;
