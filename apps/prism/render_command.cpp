@@ -253,6 +253,11 @@ bool render_image(const RenderArgs& args, const PreparedScene& prepared, const s
   if (options.noise_threshold > 0) image.metadata.push_back({"prism.noiseThreshold", options.noise_threshold});
   if (options.time_limit > 0) image.metadata.push_back({"prism.timeLimit", options.time_limit});
   if (time) image.metadata.push_back({"prism.time", *time});
+  if (camera.has_lens()) {
+    image.metadata.push_back({"prism.lensRadius", double(camera.lens().radius)});
+    image.metadata.push_back({"prism.focusDistance", double(camera.lens().focus_distance)});
+    if (camera.lens().blades >= 3) image.metadata.push_back({"prism.apertureBlades", camera.lens().blades});
+  }
   if (options.spectral_bins.count() > 0) {
     image.metadata.push_back({"spectralLayoutVersion", std::string("1.0")});
     image.metadata.push_back({"emissiveUnits", std::string("W.m^-2.sr^-1")});

@@ -4,6 +4,10 @@
 // pinhole bit for bit, and the bidirectional integrators, which see the scene through the lens from
 // the light's side, agree with the path tracer.
 
+#include <ImfDoubleAttribute.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -236,6 +240,13 @@ TEST_CASE("a camera's extras give it a lens, and the command line's options over
   REQUIRE(test::run_prism(with_extras(R"({"lens_radius": 0.05})") + " --lens-radius 0.02 --focus-distance 1.5", &err) ==
           0);
   CHECK_THAT(err, Catch::Contains("lens radius 0.02, in focus at 1.5"));
+  Imf::InputFile exr((dir / "out.exr").c_str());  // and the header records it
+  const auto* radius = exr.header().findTypedAttribute<Imf::DoubleAttribute>("prism.lensRadius");
+  const auto* focus = exr.header().findTypedAttribute<Imf::DoubleAttribute>("prism.focusDistance");
+  REQUIRE(radius != nullptr);
+  REQUIRE(focus != nullptr);
+  CHECK(radius->value() == Approx(0.02));
+  CHECK(focus->value() == Approx(1.5));
   // Bad values: one line naming the file, the camera and the key; no image.
   std::filesystem::remove(dir / "out.exr");
   CHECK(test::run_prism(with_extras(R"({"aperture": -2})"), &err) == 1);
