@@ -10,7 +10,7 @@
 #   tools/render_showcases.sh [--build DIR] [NAME ...]   (default: build/, every picture)
 #
 # Run it on an otherwise idle machine: the times it writes are wall times. All the pictures take
-# about 45 minutes on 2 cores. The EXR images are kept in a temporary folder only.
+# about 50 minutes on 2 cores. The EXR images are kept in a temporary folder only.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$root/build
@@ -39,6 +39,7 @@ dispersion|A dispersive prism and the spectrum it casts|dispersion|--width 384 -
 diamond|A brilliant-cut diamond on a dark floor under one small light: its fire|diamond|--width 384 --spp 1536
 lamp_hall|A hall lit by 1,152 small lamps of six colours, its light sampled by a light tree|lamp_hall|--width 480 --spp 160
 screen_room|A dark room lit only by a screen showing a city at night, sampled by its texels|screen_room|--width 480 --spp 512
+depth_of_field|Seven measured metals in a row, the gold one in focus at f/1.4 through six blades|depth_of_field|--width 480 --spp 1024
 metamerism_d65|Two paints under D65: they match|metamerism|--width 320 --spp 128 --env 1,1,1 --env-spectrum D65 --white-balance D65
 metamerism_a|The same two paints under illuminant A: they part|metamerism|--width 320 --spp 128 --env 1,1,1 --env-spectrum A --white-balance A
 metamerism_f11|The same two paints under F11: they part|metamerism|--width 320 --spp 128 --env 1,1,1 --env-spectrum F11 --white-balance F11

@@ -288,6 +288,8 @@ def build_gltf(objects, camera, generator, copyright, scene_name, root=None, lig
 
     g["cameras"].append({"name": camera["name"], "type": "perspective", "perspective": {
         k: camera[k] for k in ("aspectRatio", "yfov", "znear")}})
+    if "extras" in camera:  # e.g. Prism's thin lens
+        g["cameras"][-1]["extras"] = camera["extras"]
     g["nodes"].append({"name": camera["name"], "camera": 0,
                        "translation": camera["translation"], "rotation": camera["rotation"]})
     for i, light in enumerate(lights):
