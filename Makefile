@@ -56,7 +56,7 @@ test-sanitize: deps
 	  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG" "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined"
 	cmake --build $(ASAN_DIR) -j $(JOBS)
 	cd $(ASAN_DIR) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-	  ctest --output-on-failure -j $(JOBS)
+	  ctest --output-on-failure -j $(JOBS) -LE slurm
 
 # Each libFuzzer target for FUZZ_SECONDS on a corpus seeded by fuzz/make_corpus.py (see
 # tools/run_fuzzers.sh); a crash, leak, timeout or sanitizer report fails.
