@@ -333,10 +333,9 @@ void add_converge_command(CLI::App& app) {
   cmd->add_option("--seed", args->seed, "Random seed")->default_val(0)->check(seed_value());
   cmd->add_option_function<std::string>(
          "--error", [args](const std::string& e) { args->relative = e == "relative"; },
-         "The error whose time to reach the summary compares: rmse (over all pixels and channels; bright pixels weigh "
-         "most) or "
-         "relative (each pixel's error over its reference value, the root of the relative MSE: dark and bright "
-         "pixels weigh alike)")
+         "The error whose time to reach the summary compares: rmse (over all pixels and channels; bright pixels "
+         "weigh most) or relative (each pixel's error over its reference value, the root of the relative MSE: dark "
+         "and bright pixels weigh alike)")
       ->default_str("rmse")
       ->check(CLI::IsMember({"rmse", "relative"}))
       ->excludes(cmd->get_option("--seconds"));

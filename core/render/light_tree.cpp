@@ -303,8 +303,8 @@ LightTree::LightTree(std::span<const std::optional<LightBounds>> bounds, std::sp
 // The node whose lanes are the binary tree's nodes below `root`, up to eight: the one with the most
 // lights below it opened while there is room. So each choice is among eight groups as alike as the
 // tree allows; cuts that pack the nodes fuller put uneven groups side by side, and cost more noise
-// than the memory they save. Lanes that stay empty have no power and an emission
-// angle no point is within (cos θ_e = 2).
+// than the memory they save. Lanes that stay empty have no power and an emission angle no point
+// is within (cos θ_e = 2).
 void LightTree::collapse(const std::vector<Binary>& binary, uint32_t root, uint32_t parent_lane) {
   const uint32_t index = uint32_t(nodes_.size());
   nodes_.emplace_back();

@@ -190,7 +190,7 @@ LensDesc GltfLoader::camera_lens(const tinygltf::Camera& camera, const std::stri
   if (!prism) return lens;
   const auto number = [&](const std::string& key, const Json& v, bool positive) {
     if (!v.is_number() || !std::isfinite(v.get<double>()) || std::abs(v.get<double>()) > 1e30 ||
-        (positive ? !(v.get<double>() > 0) : false))
+        (positive && !(v.get<double>() > 0)))
       fail("{}: extras.prism.{} must be a {}finite number", where, key, positive ? "positive, " : "");
     return float(v.get<double>());
   };
