@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "materials/ior.h"
+#include "materials/medium.h"
 #include "materials/texture.h"
 #include "spectral/spectrum.h"
 
@@ -27,14 +28,14 @@ struct MeasuredMetal {
 };
 
 // The dielectric interface of a surface: its index, and, for a closed volume (not a thin
-// wall), the Beer–Lambert absorption coefficient σ_a(λ) of its interior, per scene unit.
+// wall), the medium that fills it (medium.h): Beer–Lambert absorption, scattering, or neither.
 struct Dielectric {
   Dielectric() : Dielectric(ConstantIor{1.5f}) {}
-  explicit Dielectric(IorModel ior_model, std::optional<Spectrum> sigma_a = {}, bool thin = false)
-      : ior(std::move(ior_model)), absorption(std::move(sigma_a)), thin_walled(thin), dispersive(is_dispersive(ior)) {}
+  explicit Dielectric(IorModel ior_model, Medium inside = {}, bool thin = false)
+      : ior(std::move(ior_model)), interior(std::move(inside)), thin_walled(thin), dispersive(is_dispersive(ior)) {}
 
   IorModel ior;
-  std::optional<Spectrum> absorption;
+  Medium interior;
   bool thin_walled;
   bool dispersive;  // derived from ior
 };

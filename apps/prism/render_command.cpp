@@ -95,7 +95,7 @@ std::string fingerprint(const RenderArgs& args, const Scene& scene, const Camera
   const std::optional<EnvironmentMapDesc>& env_map = scene.environment_map;
   return fmt::format(
       "scene={} scene-hash={:016x} time={} env={} env-map={} env-map-hash={:016x} env-rotate={} env-scale={} "
-      "env-spectrum={} env-white-hash={:016x} camera={} "
+      "env-spectrum={} env-white-hash={:016x} fog={} camera={} "
       "camera-hash={:016x} size={}x{} "
       "integrator={} merge-radius={} "
       "seed={} sampler={} "
@@ -104,10 +104,10 @@ std::string fingerprint(const RenderArgs& args, const Scene& scene, const Camera
       "energy-compensation={} gltf-scene={} variant={} animation={}",
       scene.source.filename().string(), scene.source_hash, time ? fmt::format("{}", *time) : "-", s.env,
       std::filesystem::path(s.env_map).filename().string(), env_map ? env_map->hash : 0, s.env_rotate, s.env_scale,
-      std::filesystem::path(s.env_spectrum).filename().string(), environment_hash(scene), s.camera, camera.hash(),
-      camera.width(), camera.height(), integrator(o.integrator).name, o.merge_radius, o.seed, sampler_name(o.sampler),
-      o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf", light_sampler_name(s.light_sampler),
-      o.noise_threshold,
+      std::filesystem::path(s.env_spectrum).filename().string(), environment_hash(scene), s.fog.empty() ? "-" : s.fog,
+      s.camera, camera.hash(), camera.width(), camera.height(), integrator(o.integrator).name, o.merge_radius, o.seed,
+      sampler_name(o.sampler), o.wavelengths, o.path.max_depth, o.path.next_event ? "mis" : "bsdf",
+      light_sampler_name(s.light_sampler), o.noise_threshold,
       o.noise_threshold > 0  // the output space's channels steer adaptive sampling
           ? fmt::format("{}/{}", ColorPipeline::standard().canonical_name(args.colorspace), args.white_balance)
           : "-",

@@ -29,6 +29,22 @@ Rgb parse_rgb(const std::string& text, const char* what) {
   return Rgb{float(v[0]), float(v[1]), float(v[2])};
 }
 
+// --fog SIGMA_S[,SIGMA_A[,G]]: a grey medium around everything; "0": none (vacuum).
+std::optional<Medium> parse_fog(const std::string& text) {
+  const std::vector<double> v = parse_numbers(text, "--fog");
+  if (v.empty() || v.size() > 3) fail("--fog '{}': expected SIGMA_S[,SIGMA_A[,G]]", text);
+  for (size_t i = 0; i < std::min<size_t>(v.size(), 2); ++i)
+    if (!(v[i] >= 0 && v[i] <= 1e30))
+      fail("--fog '{}': the coefficients must be finite and non-negative (per metre)", text);
+  if (v.size() == 3 && !(std::abs(v[2]) < 1)) fail("--fog '{}': the asymmetry G must lie in (-1, 1)", text);
+  Medium fog;
+  if (v[0] > 0) fog.sigma_s = ConstantSpectrum{float(v[0])};
+  if (v.size() > 1 && v[1] > 0) fog.sigma_a = ConstantSpectrum{float(v[1])};
+  if (v.size() == 3) fog.phase.g = float(v[2]);
+  if (fog.empty()) return std::nullopt;
+  return fog;
+}
+
 uint64_t max_memory_bytes(const SceneArgs& args) {
   if (args.max_memory_gb > 0) return uint64_t(std::min(args.max_memory_gb * 1e9, 1.8e19));
   return uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
@@ -121,6 +137,10 @@ void add_scene_options(CLI::App* cmd, SceneArgs& args) {
   cmd->add_option("--env-spectrum", args.env_spectrum,
                   "The spectrum of the environment's white (--env or --env-map): a named illuminant (e.g. A, D50, "
                   "F11, LED-B3), blackbody:KELVIN, or a CSV file of nm,value (default: D65)");
+  cmd->add_option("--fog", args.fog,
+                  "Fill the space around the scene's objects with a grey medium: SIGMA_S[,SIGMA_A[,G]], scattering "
+                  "and absorption per metre and the phase function's asymmetry in (-1, 1) (default 0: isotropic); "
+                  "0 clears the scene's own");
   cmd->add_option("--max-memory", args.max_memory_gb,
                   "Refuse scenes and images estimated to need more than GB gigabytes (default: physical memory)")
       ->check(CLI::PositiveNumber);
@@ -273,6 +293,7 @@ bool pose_scene(PreparedScene& p, const SceneArgs& args, double seconds) {
 PreparedScene prepare_scene(const SceneArgs& args, bool keep_file) {
   std::optional<Rgb> env;
   if (!args.env.empty()) env = parse_rgb(args.env, "--env");
+  const std::optional<Medium> fog = args.fog.empty() ? std::nullopt : parse_fog(args.fog);
   cie();  // fail early if the data files are missing
   std::optional<EnvironmentMapDesc> env_map;
   if (!args.env_map.empty()) {
@@ -302,6 +323,7 @@ PreparedScene prepare_scene(const SceneArgs& args, bool keep_file) {
       scene.environment = RgbIlluminantSpectrum(*env);
   }
   scene.environment_map = std::move(env_map);
+  if (!args.fog.empty()) scene.medium = fog;
   if (!args.energy_compensation)
     for (Material& m : scene.materials)
       if (auto* pbr = std::get_if<PbrMaterial>(&m.kind)) pbr->energy_compensation = false;

@@ -12,7 +12,7 @@
 namespace prism {
 
 struct SceneArgs {
-  std::string scene, env, env_map, env_spectrum;
+  std::string scene, env, env_map, env_spectrum, fog;
   float env_rotate = 0, env_scale = 1;
   int width = 0, height = 0, camera = -1;
   GltfOptions gltf;
@@ -33,7 +33,7 @@ inline constexpr uint64_t kBytesPerPixel = 256, kBytesPerInstance = 512;
 const CLI::Validator& positive_count();
 const CLI::Validator& seed_value();
 
-// The scene file (positional), --env / --env-map / --env-rotate / --env-scale / --env-spectrum, --width,
+// The scene file (positional), --env / --env-map / --env-rotate / --env-scale / --env-spectrum, --fog, --width,
 // --height, --camera and its lens (add_lens_options), --no-energy-compensation, --light-sampler, and the
 // glTF choices of add_gltf_options.
 void add_scene_options(CLI::App* cmd, SceneArgs& args);

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "core/render/direct_light.h"
+#include "core/render/medium_sampling.h"
 #include "core/render/medium_stack.h"
 #include "core/render/path_vertex.h"
 #include "core/render/russian_roulette.h"
@@ -26,13 +27,6 @@ BdptScene::BdptScene(const World& w, const Camera& c, bool m, bool lt)
 }
 
 namespace {
-
-// The media a connection leaving surface si along w runs through: the path's own on the side it
-// came from, those behind the surface for a direction through it.
-MediumStack segment_media(MediumStack media, const SurfaceInteraction& si, const Vec3f& w) {
-  if (dot(w, si.n) * dot(si.wo, si.n) < 0) media.cross(*si.material, si.front_face());
-  return media;
-}
 
 // The light subpath: one light chosen by power, an emission from it, and a random walk with the
 // adjoint BSDF; its non-specular vertices are kept for connections.
@@ -66,14 +60,14 @@ void trace_light_path(const BdptScene& scene, SampledWavelengths<N>& lambda, Sam
   m.vm = m.vc * factors.vc;
   const float beta0 = beta.max();
   Ray ray = e->ray;
-  MediumStack media;
+  MediumStack media(scene.world.scene_medium());
 
   for (int length = 1; length <= options.max_depth; ++length) {
     sampler.start_bounce(block + length);
     ++counters.secondary;
     const auto si = world.intersect(ray);
     if (!si) break;
-    if (scene.media) beta *= media.transmittance(si->t, lambda);
+    if (scene.media) beta *= transmittance(media.medium(), si->t, lambda);
     m.arrive(si->t, abs_dot(si->n, si->wo), length > 1 || finite);
     if (length == 1)
       m.vcm *= mis(world.light_sampler().pmf(LightSampleContext{si->p, si->p_error, si->n}, index) / pick);
@@ -156,7 +150,7 @@ SampledSpectrum<N> connect_light(const BdptScene& scene, const SurfaceInteractio
   ++counters.shadow;
   if (scene.world.occluded(s->shadow_ray)) return SampledSpectrum<N>(0.f);
   SampledSpectrum<N> c = f * s->L / (pick * s->pdf * (1.f + w_light + w_camera));
-  if (scene.media) c *= segment_media(media, si, s->wi).transmittance(distance, lambda);
+  if (scene.media) c *= transmittance(media.towards(si, s->wi), distance, lambda);
   return c;
 }
 
@@ -185,7 +179,7 @@ SampledSpectrum<N> connect_vertices(const BdptScene& scene, const SurfaceInterac
   if (scene.world.occluded(spawn_ray_to(si.p, si.p_error, si.n, v.si.p, v.si.p_error, v.si.n)))
     return SampledSpectrum<N>(0.f);
   SampledSpectrum<N> r = c / (1.f + w_light + w_camera);
-  if (scene.media) r *= segment_media(media, si, w).transmittance(dist, lambda);
+  if (scene.media) r *= transmittance(media.towards(si, w), dist, lambda);
   return r;
 }
 
@@ -252,7 +246,7 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, const SampledW
   const auto add = [&](const SampledSpectrum<N>& c, bool hero_only) { (hero_only ? hero : L) += c; };
   MisSums m{mis(scene.light_paths / scene.camera.ray_density(ray)), 0.f, 0.f};
   float eta_scale = 1.f;  // Π η² of the refractions so far: undoes radiance scaling for roulette
-  MediumStack media;
+  MediumStack media(scene.world.scene_medium());
   // s = 0: a light the camera path reached; full weight when seen directly (eq. 38).
   const auto add_emitted = [&](int depth, const SampledSpectrum<N>& Le, float direct_pdf, float emission_pdf) {
     add(depth == 0 ? beta * Le : beta * Le / (1.f + mis(direct_pdf) * m.vcm + mis(emission_pdf) * m.vc),
@@ -263,7 +257,7 @@ SampledSpectrum<N> bdpt_radiance(const BdptScene& scene, Ray ray, const SampledW
     sampler.start_bounce(depth);
     ++(depth == 0 ? counters.primary : counters.secondary);
     const auto si = world.intersect(ray);
-    if (scene.media) beta *= media.transmittance(si ? si->t : kInfinity, camera_lambda);
+    if (scene.media) beta *= transmittance(media.medium(), si ? si->t : kInfinity, camera_lambda);
     if (!si) {
       if (const Light* env = world.environment()) {
         const auto [pick, emission_pick] = picks(depth, uint32_t(world.environment_light()));

@@ -16,6 +16,8 @@ struct LightContribution {
   SampledSpectrum<N> f_L;  // f(wo, wi) · L_i · |cos θ_i| · transmittance, not yet divided by the pdf
   float light_pdf;         // solid-angle pdf of the light sample (1 for a point light)
   float bsdf_pdf;          // the BSDF's pdf of sampling the same direction (DispersiveBsdf: p̄)
+  Vec3f wi;                // towards the light (world)
+  float distance;          // to it along wi (the shadow ray's length; ∞ for a light at infinity)
 };
 
 // A direction must be on the side of the geometric surface that the lobe scattering into it
@@ -52,7 +54,7 @@ std::optional<LightContribution<N>> light_contribution(const World& world, const
   const BsdfEval<N> e = bsdf_eval(bsdf, wo, wi);
   const SampledSpectrum<N> f = e.f * abs_cos_theta(wi);
   if (f.is_zero()) return std::nullopt;
-  return LightContribution<N>{f * sample->L * T, sample->pdf, e.pdf};
+  return LightContribution<N>{f * sample->L * T, sample->pdf, e.pdf, sample->wi, sample->shadow_ray.tmax};
 }
 
 }  // namespace prism

@@ -52,20 +52,20 @@ constexpr RadianceEstimators kBidirectional{&bidirectional_estimator<1>, &bidire
                                             &bidirectional_estimator<8>};
 
 //                kind                     name       description
-//                radiance         light_paths  light_tracing_only  photon_iterations  first_hit  check_only
+//                radiance  light_paths  light_tracing_only  photon_iterations  first_hit  check_only  scattering
 constexpr std::array kIntegrators{
     Integrator{IntegratorKind::path, "path", "unidirectional path tracing with next-event estimation and MIS", kPath,
-               false, false, false, true, false},
+               false, false, false, true, false, true},
     Integrator{IntegratorKind::whitted, "whitted",
                "recursive Fresnel splitting (Whitted 1980): no indirect diffuse light", kWhitted, false, false, false,
-               false, false},
+               false, false, false},
     Integrator{IntegratorKind::bdpt, "bdpt", "bidirectional path tracing", kBidirectional, true, false, false, false,
-               false},
+               false, false},
     Integrator{IntegratorKind::vcm, "vcm",
                "bidirectional path tracing with vertex merging (caustics, dispersion seen through glass)",
-               kBidirectional, true, false, true, false, false},
+               kBidirectional, true, false, true, false, false, false},
     Integrator{IntegratorKind::light, "light", "light tracing alone (a check of the others)", kBidirectional, true,
-               true, false, false, true},
+               true, false, false, true, false},
 };
 static_assert(
     [] {
@@ -94,6 +94,7 @@ std::string integrator_names() {
 }
 
 IntegratorChoice choose_integrator(const SceneFeatures& f, bool per_pixel) {
+  if (f.scattering) return {IntegratorKind::path, "the scene has scattering media, which only path renders"};
   const bool lights_in_scene = f.emissive_triangles || f.point_lights || f.spot_lights || f.directional_lights;
   if (!f.dielectric_volumes || !lights_in_scene)
     return {IntegratorKind::path, f.dielectric_volumes ? "the closed dielectrics are lit by the environment alone"

@@ -75,6 +75,7 @@ struct Integrator {
   bool first_hit;           // takes the camera ray's first hit from the renderer, so a constant sky seen at once
                             // is its exact colour (sky.h)
   bool check_only;          // a check of the others, not a way to render images: `prism converge` leaves it out
+  bool scattering;          // renders media that scatter light (the others refuse such a scene)
 
   // Whether it renders per pixel (a noise threshold, crop windows and spectral bins need that).
   bool per_pixel() const { return !light_paths; }

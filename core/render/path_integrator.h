@@ -16,9 +16,10 @@ struct PathOptions {
 };
 
 // Machinery a scene may not need, compiled in or out per render (the renderer picks from the
-// scene's features): Media, the stack of closed dielectrics a path is inside with Beer–Lambert
-// absorption; Dispersion, the check for λ-dependent index ratios, where the lanes are weighed by
-// spectral MIS (materials/dispersive_bsdf.h). A scene without them runs code that does not contain them.
+// scene's features): Media, the stack of closed dielectrics a path is inside and the media that fill
+// them and the scene (absorption, scattering; medium_sampling.h); Dispersion, the check for λ-dependent index ratios,
+// where the lanes are weighed by spectral MIS (materials/dispersive_bsdf.h). A scene without them runs code that does
+// not contain them.
 struct PathFeatures {
   bool media = true, dispersion = true;
 };

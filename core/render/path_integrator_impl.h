@@ -7,6 +7,7 @@
 #include <new>
 
 #include "core/render/direct_light.h"
+#include "core/render/medium_sampling.h"
 #include "core/render/medium_stack.h"
 #include "core/render/path_integrator.h"
 #include "core/render/russian_roulette.h"
@@ -17,22 +18,53 @@ namespace prism {
 
 namespace {
 
-// Next-event estimation: one light chosen for the point (light_sampler.h), weighted against BSDF
-// sampling by MIS.
-template <int N, class B>
-SampledSpectrum<N> sample_direct(const World& world, const SurfaceInteraction& si, const Frame& frame, const B& bsdf,
-                                 const Vec3f& wo, const Vec3f& reflect_axis, const SampledWavelengths<N>& lambda,
-                                 const PathSky<N>& sky, Sampler& sampler, RayCounters& counters) {
+// Next-event estimation: one light chosen for the point `at` (light_sampler.h), weighted against
+// BSDF or phase sampling by MIS; contribution(light, u) is what that light's sample gives there.
+template <int N, class Contribution>
+SampledSpectrum<N> sample_direct(const World& world, const LightSampleContext& at, Sampler& sampler,
+                                 const Contribution& contribution) {
   const float u_light = sampler.get_1d();
   const Vec2f u = sampler.get_2d();
-  const auto chosen = world.light_sampler().sample(LightSampleContext{si.p, si.p_error, si.n, reflect_axis}, u_light);
+  const auto chosen = world.light_sampler().sample(at, u_light);
   if (!chosen || chosen->pmf == 0.f) return SampledSpectrum<N>(0.f);
   const Light& light = world.lights()[chosen->light];
-  const auto c = light_contribution(world, si, frame, bsdf, wo, light, u, lambda, counters, reflect_axis, &sky);
+  const std::optional<LightContribution<N>> c = contribution(light, u);
   if (!c) return SampledSpectrum<N>(0.f);
   const float light_pdf = chosen->pmf * c->light_pdf;
   const float weight = is_delta(light) ? 1.f : balance_heuristic(light_pdf, c->bsdf_pdf);
   return c->f_L * (weight / light_pdf);
+}
+
+// A light sample from a point in a medium, the shadow ray crossing it: the light arrives attenuated
+// by the medium's transmittance T, and, in a scattering medium, BSDF or phase sampling reaches the
+// light only if the lanes' distance sampling then passes the segment, so its pdf for MIS is
+// Σ q_j p_j(wi) T_j / Σ q_j (medium_sampling.h): p̄ × the mean T, with a dispersive BSDF's lanes'
+// pdfs weighted by q_j T_j rather than q_j (the phase function's and other BSDFs' are the same in
+// every lane).
+template <int N, class B>
+void through_medium(LightContribution<N>& c, const MediumCoefficients<N>& medium, bool scattering, const B& bsdf,
+                    const Vec3f& wo, const Frame& frame, SampledSpectrum<N>& path_pdfs) {
+  const SampledSpectrum<N> T = medium.transmittance(c.distance);
+  c.f_L *= T;
+  if (!scattering) return;
+  if constexpr (std::is_same_v<B, DispersiveBsdf<N>>) {
+    const SampledSpectrum<N> q = path_pdfs;
+    path_pdfs *= T;  // the lanes' weights in the dispersive BSDF's p̄
+    c.bsdf_pdf = path_pdfs.max() > 0 ? bsdf_eval(bsdf, wo, frame.to_local(c.wi)).pdf : 0.f;
+    path_pdfs = q;
+  }
+  c.bsdf_pdf *= mean_transmittance(T, path_pdfs);
+}
+
+// Russian roulette at a path's vertex: ends the path (false), or keeps it with beta raised by the
+// probability of surviving.
+template <int N>
+bool survives_roulette(SampledSpectrum<N>& beta, float eta_scale, Sampler& sampler) {
+  const float q = roulette_termination(beta.max() * eta_scale);
+  if (q <= 0.f) return true;
+  if (sampler.get_1d() < q) return false;
+  beta /= 1.f - q;
+  return true;
 }
 
 // An alpha BLEND surface (opacity alpha) is the surface beside a hole, as Cycles' transparent BSDF
@@ -69,8 +101,9 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
   // From the last scattering vertex to ray.o, over the BLEND surfaces passed: light met beyond them
   // is that much farther away (for area lights' solid-angle pdfs).
   float travelled = 0;
-  MediumStack media;
-  BeerLambert<N> absorption;
+  MediumStack media(Media ? world.scene_medium() : nullptr);
+  MediumCoefficients<N> medium;         // of the medium the path is in, at its wavelengths
+  MediumCoefficients<N> beyond_medium;  // of the one beyond a surface, for light sampled through it
   const LightSampler& light_sampler = world.light_sampler();
   const PathSky<N> sky(world.environment(), lambda);
   BsdfCache<N> bsdf_cache;
@@ -81,7 +114,53 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     sampler.start_bounce(vertex);
     ++(vertex == 0 ? counters.primary : counters.secondary);
     const auto si = vertex == 0 && first ? *first : world.intersect(ray, true);
-    if constexpr (Media) beta *= absorption.transmittance(media, si ? si->t : kInfinity, lambda);
+    // Through the medium up to the surface: absorbed on the way, or, in a scattering medium,
+    // scattered at a point before it (medium_sampling.h).
+    const Medium* in = Media ? media.medium() : nullptr;
+    const float t_surface = si ? si->t : kInfinity;
+    std::optional<float> t_scatter;
+    if (in) {
+      medium.of(*in, lambda);
+      if (!in->scatters()) {
+        beta *= medium.transmittance(t_surface);
+      } else {
+        const MediumEvent<N> e = sample_medium_event(medium, t_surface, sampler.get_1d(), path_pdfs);
+        beta *= e.weight;
+        if (e.scattered)
+          t_scatter = e.t;
+        else
+          bsdf_pdf_prev *= e.pdf;  // light met at the surface was reached by passing the segment
+      }
+    }
+    if (t_scatter) {
+      // A scattering event in the medium: light sampled towards it, and the path goes on in a
+      // direction from the phase function, which samples itself exactly (weight 1).
+      if (depth == options.max_depth || beta.is_zero()) break;
+      if (roulette_due && (roulette_due = false, !survives_roulette(beta, eta_scale, sampler))) break;
+      const Vec3f p = ray.o + ray.d * *t_scatter;
+      const HenyeyGreenstein& phase = in->phase;
+      prev = {p, Vec3f(0.f, 0.f, 0.f), Vec3f(0.f, 0.f, 0.f)};
+      if (options.next_event)
+        L += beta * sample_direct<N>(world, prev, sampler, [&](const Light& light, Vec2f u) {
+               auto s = sample_li(light, prev, u, lambda, &sky);
+               if (!s || s->L.is_zero()) return std::optional<LightContribution<N>>();
+               ++counters.shadow;
+               const float visible = world.transmittance(s->shadow_ray);
+               const float f = phase.eval(ray.d, s->wi);
+               if (visible == 0 || f == 0) return std::optional<LightContribution<N>>();
+               LightContribution<N> c{s->L * (visible * f), s->pdf, f, s->wi, s->shadow_ray.tmax};
+               through_medium(c, medium, true, phase, Vec3f(), Frame(), path_pdfs);  // (wo, frame unused)
+               return std::optional(c);
+             });
+      const Vec3f wi = phase.sample(ray.d, sampler.get_2d());
+      specular_bounce = false;
+      bsdf_pdf_prev = phase.pdf(ray.d, wi);
+      ::new (&ray) Ray{p, wi};
+      travelled = 0;
+      roulette_due = options.russian_roulette && depth >= 1;
+      ++depth;
+      continue;
+    }
     const float alpha = si ? si->material->blend_opacity(si->at) : 1.f;  // < 1: an alpha BLEND surface, partly a hole
 
     // Light reached without sampling it: full weight after a camera or specular vertex,
@@ -122,14 +201,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     // Russian roulette from the third surface on, where the path meets it and before shading it
     // (Cycles' rule): a ray that leaves for the sky is never cut short, so the sky's light, most of
     // an open scene's, carries no roulette noise.
-    if (roulette_due) {
-      roulette_due = false;
-      const float q = roulette_termination(beta.max() * eta_scale);
-      if (q > 0.f) {
-        if (sampler.get_1d() < q) break;
-        beta /= 1.f - q;
-      }
-    }
+    if (roulette_due && (roulette_due = false, !survives_roulette(beta, eta_scale, sampler))) break;
 
     const bool entering = si->front_face();
     const Dielectric* front = Media ? media.front_dielectric(material, entering) : nullptr;
@@ -142,8 +214,16 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     const SampledSpectrum<N> path_pdfs_before = path_pdfs;  // a dispersive sample updates them
     const auto scatter = [&](const auto& bsdf) {
       const auto direct = [&] {
-        if (options.next_event && !bsdf_is_specular(bsdf))
-          L += beta * sample_direct(world, *si, frame, bsdf, wo, reflect_axis, lambda, sky, sampler, counters);
+        if (!options.next_event || bsdf_is_specular(bsdf)) return;
+        const LightSampleContext at{si->p, si->p_error, si->n, reflect_axis};
+        L += beta * sample_direct<N>(world, at, sampler, [&](const Light& light, Vec2f u) {
+               auto c = light_contribution(world, *si, frame, bsdf, wo, light, u, lambda, counters, reflect_axis, &sky);
+               if constexpr (Media)  // the shadow ray crosses the medium on the light's side of the surface
+                 if (const Medium* m = c ? media.towards(*si, c->wi) : nullptr)
+                   through_medium(*c, m == in ? medium : beyond_medium.of(*m, lambda), m->scatters(), bsdf, wo, frame,
+                                  path_pdfs);
+               return c;
+             });
       };
       if (alpha == 1) direct();
       const float uc = sampler.get_1d();

@@ -243,7 +243,7 @@ RenderResult render_with(const World& world, const Camera& camera, const RenderO
 
 }  // namespace
 
-PathFeatures path_features(const SceneFeatures& f) { return {f.dielectric_volumes, f.dispersion}; }
+PathFeatures path_features(const SceneFeatures& f) { return {f.dielectric_volumes || f.scene_medium, f.dispersion}; }
 
 std::string RenderStats::summary() const {
   return fmt::format(
@@ -274,6 +274,9 @@ RenderResult render(const World& world, const Camera& camera, const RenderOption
   if (resume && (resume->film.width() != camera.width() || resume->film.height() != camera.height()))
     fail("the state to resume is {}x{}, the camera {}x{}", resume->film.width(), resume->film.height(), camera.width(),
          camera.height());
+  if (world.features().scattering && !integrator(options.integrator).scattering)
+    fail("the {} integrator does not render scattering media yet; the path integrator does (--integrator path)",
+         integrator(options.integrator).name);
   cie();  // load the colour tables before the threads start, so errors surface here
   switch (options.wavelengths) {
     case 1:

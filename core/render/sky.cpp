@@ -8,7 +8,8 @@ namespace prism {
 
 std::optional<Xyz> sky_xyz(const World& world, bool first_hit, bool spectral_bins) {
   const auto* sky = world.environment() ? std::get_if<EnvironmentLight>(world.environment()) : nullptr;
-  if (!sky || !first_hit || spectral_bins) return std::nullopt;
+  if (!sky || !first_hit || spectral_bins || world.scene_medium())
+    return std::nullopt;  // fog: no ray sees it unhindered
   return sampled_xyz_mean(*sky->radiance);
 }
 

@@ -7,7 +7,7 @@
 // without the wavelengths' colour noise or their spectral work. And a pixel whose every camera ray
 // leaves the scene at once (nothing in the accel can meet the rays through it: Camera::frustum,
 // Accel::may_meet) takes that value for each of its samples untraced. Both give the image the rays
-// would have given, bit for bit.
+// would have given, bit for bit. (Not in a scene filled with a medium: there no ray leaves unhindered.)
 
 #include <cstdint>
 #include <optional>

@@ -1,6 +1,7 @@
 #include "core/render/whitted_integrator.h"
 
 #include "core/render/direct_light.h"
+#include "core/render/medium_sampling.h"
 #include "core/render/medium_stack.h"
 #include "materials/make_bsdf.h"
 
@@ -25,13 +26,18 @@ SampledSpectrum<N> trace(const Context& c, const Ray& ray, const SampledWaveleng
 
 // Direct light at a diffuse surface: every delta (point, spot, directional) light, and one
 // power-sampled sample of the area lights and the environment (constant or image).
+// The light arrives through the medium on its side of the surface.
 template <int N>
 SampledSpectrum<N> direct_light(const Context& c, const SurfaceInteraction& si, const Frame& frame, const Bsdf<N>& bsdf,
-                                const Vec3f& wo, const SampledWavelengths<N>& lambda) {
+                                const Vec3f& wo, const SampledWavelengths<N>& lambda, const MediumStack& media) {
   SampledSpectrum<N> L(0.f);
   const auto& lights = c.world.lights();
+  const auto through = [&](const LightContribution<N>& d) {
+    return d.f_L * transmittance(media.towards(si, d.wi), d.distance, lambda);
+  };
   for (uint32_t i : c.world.delta_lights())
-    if (const auto d = light_contribution(c.world, si, frame, bsdf, wo, lights[i], {}, lambda, c.counters)) L += d->f_L;
+    if (const auto d = light_contribution(c.world, si, frame, bsdf, wo, lights[i], {}, lambda, c.counters))
+      L += through(*d);
   const PowerLightSampler& area = c.world.area_light_sampler();
   const float u_light = c.sampler.get_1d();
   const Vec2f u = c.sampler.get_2d();
@@ -39,7 +45,7 @@ SampledSpectrum<N> direct_light(const Context& c, const SurfaceInteraction& si, 
     const uint32_t k = area.sample(u_light);
     const auto d =
         light_contribution(c.world, si, frame, bsdf, wo, lights[c.world.area_lights()[k]], u, lambda, c.counters);
-    if (d && area.pmf(k) > 0) L += d->f_L / (area.pmf(k) * d->light_pdf);
+    if (d && area.pmf(k) > 0) L += through(*d) / (area.pmf(k) * d->light_pdf);
   }
   return L;
 }
@@ -56,7 +62,7 @@ SampledSpectrum<N> scatter(const Context& c, const SurfaceInteraction& si, const
   const Frame frame = si.shading_frame();
   const Vec3f wo = frame.to_local(si.wo);
   SampledSpectrum<N> L(0.f);
-  if (!bsdf_is_specular(bsdf)) L += direct_light(c, si, frame, bsdf, wo, lambda);
+  if (!bsdf_is_specular(bsdf)) L += direct_light(c, si, frame, bsdf, wo, lambda, media);
   for (const DeltaLobe<N>& lobe : bsdf_delta_lobes(bsdf, wo)) {
     const Vec3f wi = frame.to_world(lobe.wi);
     if (wrong_side(si, wi, lobe.transmission)) continue;
@@ -92,12 +98,12 @@ SampledSpectrum<N> trace(const Context& c, const Ray& ray, const SampledWaveleng
                          const MediumStack& media, int depth, float weight) {
   ++(depth == 0 ? c.counters.primary : c.counters.secondary);
   const auto si = c.world.intersect(ray);
-  const SampledSpectrum<N> transmittance = media.transmittance(si ? si->t : kInfinity, lambda);
+  const SampledSpectrum<N> T = transmittance(media.medium(), si ? si->t : kInfinity, lambda);
   if (!si) {
     const Light* env = c.world.environment();
-    return env ? transmittance * environment_Le(*env, ray.d, lambda) : SampledSpectrum<N>(0.f);
+    return env ? T * environment_Le(*env, ray.d, lambda) : SampledSpectrum<N>(0.f);
   }
-  return transmittance * shade(c, *si, lambda, media, depth, weight * transmittance.max());
+  return T * shade(c, *si, lambda, media, depth, weight * T.max());
 }
 
 }  // namespace
@@ -105,7 +111,7 @@ SampledSpectrum<N> trace(const Context& c, const Ray& ray, const SampledWaveleng
 template <int N>
 SampledSpectrum<N> whitted_radiance(const World& world, const Ray& ray, const SampledWavelengths<N>& lambda,
                                     Sampler& sampler, const PathOptions& options, RayCounters& counters) {
-  return trace(Context{world, sampler, options, counters}, ray, lambda, MediumStack{}, 0, 1.f);
+  return trace(Context{world, sampler, options, counters}, ray, lambda, MediumStack(world.scene_medium()), 0, 1.f);
 }
 
 #define PRISM_INSTANTIATE(N)                                                                                        \

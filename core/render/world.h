@@ -68,6 +68,8 @@ class World {
   // The environment (an EnvironmentLight or EnvironmentMapLight; see environment_Le), or null.
   int environment_light() const { return environment_light_; }
   const Light* environment() const { return environment_light_ < 0 ? nullptr : &lights_[environment_light_]; }
+  // The medium around the closed dielectrics (the scene's fog), or null for vacuum.
+  const Medium* scene_medium() const { return scene_.medium ? &*scene_.medium : nullptr; }
 
  private:
   std::array<Vec3f, 3> world_vertices(const Instance& inst, uint32_t prim) const;

@@ -81,7 +81,35 @@ Spectrum parse_spectrum(const Json& value, SpectrumUse use, SceneFiles& files, c
   fail("{}: a spectrum object needs \"blackbody\", \"wavelengths\" and \"values\", or \"file\"", what);
 }
 
+// A medium's coefficient: a plain number (per scene unit, the same at every wavelength) or a
+// SPECTRUM of them.
+Spectrum parse_coefficient(const Json& value, SceneFiles& files, const std::string& what) {
+  if (!value.is_number()) return parse_spectrum(value, SpectrumUse::coefficient, files, what);
+  const double c = value.get<double>();
+  if (!(c >= 0 && c <= 1e30)) fail("{}: must be a finite, non-negative number per scene unit (got {})", what, c);
+  return ConstantSpectrum{float(c)};
+}
+
 }  // namespace
+
+Medium GltfLoader::medium_extras(const Json& v, const std::string& what) {
+  if (!v.is_object()) fail("{}: a medium is {{\"sigma_a\": SPECTRUM, \"sigma_s\": SPECTRUM, \"g\": NUMBER}}", what);
+  Medium medium;
+  for (const auto& [key, value] : v.items()) {
+    if (key == "sigma_a") {
+      medium.sigma_a = parse_coefficient(value, files_, what + ".sigma_a");
+    } else if (key == "sigma_s") {
+      medium.sigma_s = parse_coefficient(value, files_, what + ".sigma_s");
+    } else if (key == "g") {
+      if (!value.is_number() || !(std::abs(value.get<double>()) < 1))
+        fail("{}.g: the phase function's asymmetry must be a number in (-1, 1)", what);
+      medium.phase.g = float(value.get<double>());
+    } else {
+      fail("{}: unknown key \"{}\" (a medium has sigma_a, sigma_s and g)", what, key);
+    }
+  }
+  return medium;
+}
 
 OpticalConstants GltfLoader::optical_constants_file(const nlohmann::json& v, const std::string& what) {
   if (!v.is_string() || v.get<std::string>().empty()) fail("{}: \"nk\" must name a refractiveindex.info file", what);
@@ -135,7 +163,7 @@ void GltfLoader::material_extras(const tinygltf::Material& m, int index, Materia
         fail("{}: a glass is a catalogue name, {{\"sellmeier\": [...]}}, {{\"n\": SPECTRUM}} or {{\"nk\": \"file\"}}",
              what);
       }
-      p.dielectric = Dielectric(std::move(n), p.dielectric.absorption, p.dielectric.thin_walled);
+      p.dielectric = Dielectric(std::move(n), p.dielectric.interior, p.dielectric.thin_walled);
       p.metallic = 0;
       p.transmission = 1;
     } else if (key == "reflectance") {
@@ -150,7 +178,20 @@ void GltfLoader::material_extras(const tinygltf::Material& m, int index, Materia
       std::vector<float> sigma;
       for (int l = int(kLambdaMin); l <= int(kLambdaMax); ++l)
         sigma.push_back(float(-std::log(std::max(double(evaluate(t, float(l))), 1e-30)) / d));
-      p.dielectric = Dielectric(p.dielectric.ior, DenselySampledSpectrum(int(kLambdaMin), std::move(sigma)), false);
+      p.dielectric.interior.sigma_a = DenselySampledSpectrum(int(kLambdaMin), std::move(sigma));
+    } else if (key == "medium") {
+      // Fills the closed volume: its sigma_a, if given, is the absorption in place of the volume
+      // extension's attenuation, which may not give it too.
+      if (p.dielectric.thin_walled || !(p.transmission > 0) || !(p.metallic < 1))
+        fail(
+            "{}: needs a closed transmissive volume: KHR_materials_transmission, KHR_materials_volume with "
+            "thicknessFactor > 0, and metallicFactor < 1",
+            what);
+      Medium medium = medium_extras(v, what);
+      if (medium.sigma_a && std::isfinite(extension_number(m, "KHR_materials_volume", "attenuationDistance", INFINITY)))
+        fail("{}: sigma_a and KHR_materials_volume's attenuation both give the absorption; give one", what);
+      if (!medium.sigma_a) medium.sigma_a = p.dielectric.interior.sigma_a;
+      p.dielectric.interior = std::move(medium);
     } else if (key == "emission") {
       const Spectrum s = parse_spectrum(v, SpectrumUse::emission, files_, what);
       const float y = luminance(out.emission_rgb);
@@ -181,6 +222,19 @@ Spectrum GltfLoader::light_emission(const tinygltf::Light& light, Rgb rgb, const
                                             where + ": extras.prism.emission"))
              .first;
   return spectrum_with_luminance(it->second, luminance(rgb));
+}
+
+void GltfLoader::scene_extras() {
+  if (model_.scenes.empty()) return;
+  const std::string where = fmt::format("{}: scene {}", file_, scene_index_);
+  const Json* prism = prism_extras(document_, {"scenes", std::to_string(scene_index_)}, where);
+  if (!prism) return;
+  for (const auto& [key, v] : prism->items()) {
+    if (key == "medium")
+      scene_.medium = medium_extras(v, where + ": extras.prism.medium");
+    else
+      warn_once(fmt::format("{}: unknown key extras.prism.{} ignored", where, key));
+  }
 }
 
 LensDesc GltfLoader::camera_lens(const tinygltf::Camera& camera, const std::string& context) {

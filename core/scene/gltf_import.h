@@ -84,6 +84,10 @@ class GltfLoader {
   // A camera's thin lens from its extras.prism (none: a pinhole).
   LensDesc camera_lens(const tinygltf::Camera& camera, const std::string& context);
   OpticalConstants optical_constants_file(const nlohmann::json& uri, const std::string& what);
+  // A medium, {"sigma_a": …, "sigma_s": …, "g": …} (a material's or the scene's).
+  Medium medium_extras(const nlohmann::json& v, const std::string& what);
+  // The scene's own extras.prism (its medium).
+  void scene_extras();
   uint32_t material_index(int gltf_material, const std::string& context);
   Rgb clamp_emission(const std::array<double, 3>& rgb, const std::string& context);
 

@@ -82,6 +82,7 @@ GltfLoader::GltfLoader(const tinygltf::Model& model, const std::filesystem::path
 }
 
 void GltfLoader::load() {
+  scene_extras();
   pose_ = pose_at(time_);
   build();
   if (scene_.instances.empty()) log::warn("{}: the scene has no triangles", file_);

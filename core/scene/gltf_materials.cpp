@@ -236,7 +236,7 @@ PbrMaterial GltfLoader::surface(const tinygltf::Material& m, Rgb base, const std
     }
     if (std::min({color.r, color.g, color.b}) < 1) absorption = RgbAbsorptionSpectrum(color, float(distance));
   }
-  p.dielectric = Dielectric(std::move(ior_model), std::move(absorption), thickness == 0);
+  p.dielectric = Dielectric(std::move(ior_model), Medium{.sigma_a = std::move(absorption)}, thickness == 0);
   return p;
 }
 

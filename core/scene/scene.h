@@ -135,6 +135,8 @@ struct Scene {
   std::vector<CameraDesc> cameras;                    // in scene traversal order
   std::optional<Spectrum> environment;                // constant radiance from every direction
   std::optional<EnvironmentMapDesc> environment_map;  // at most one of environment, environment_map
+  // The medium that fills the space around every closed dielectric (fog, haze); none: vacuum.
+  std::optional<Medium> medium;
 
   // A box around each instance's transformed mesh box: exact for translations and axis scales,
   // a little loose under rotation, and O(instances) however large the meshes.

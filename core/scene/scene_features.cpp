@@ -10,7 +10,8 @@ SceneFeatures analyze_features(const Scene& scene) {
     if (const auto* d = m.dielectric()) {
       f.dielectric_volumes |= !d->thin_walled;
       f.dispersion |= d->dispersive;
-      f.absorption |= d->absorption.has_value() && !d->thin_walled;
+      f.absorption |= d->interior.absorbs() && !d->thin_walled;
+      f.scattering |= d->interior.scatters() && !d->thin_walled;
     }
     f.textures |= m.normal_texture || m.emission_texture;
     if (const auto* p = std::get_if<PbrMaterial>(&m.kind)) {
@@ -25,6 +26,8 @@ SceneFeatures analyze_features(const Scene& scene) {
   f.directional_lights = !scene.directional_lights.empty();
   f.environment = scene.environment.has_value();
   f.environment_map = scene.environment_map.has_value();
+  f.scene_medium = scene.medium && !scene.medium->empty();
+  f.scattering |= scene.medium && scene.medium->scatters();
   return f;
 }
 
@@ -44,6 +47,8 @@ std::string SceneFeatures::to_string() const {
   add(dielectric_volumes, "dielectric_volumes");
   add(dispersion, "dispersion");
   add(absorption, "absorption");
+  add(scattering, "scattering");
+  add(scene_medium, "scene_medium");
   add(measured_metals, "measured_metals");
   add(textures, "textures");
   add(alpha, "alpha");

@@ -18,6 +18,8 @@ struct SceneFeatures {
   bool dielectric_volumes = false;  // closed transmissive dielectrics: paths enter and leave them
   bool dispersion = false;          // a dielectric whose index varies with wavelength
   bool absorption = false;          // a closed dielectric volume with Beer–Lambert absorption
+  bool scattering = false;          // a medium that scatters light (in a closed dielectric or around them all)
+  bool scene_medium = false;        // a medium around the closed dielectrics (fog)
   bool measured_metals = false;     // a metal with catalogue n, k tables
   bool textures = false;            // a material reads an image
   bool alpha = false;               // a material is cut away by alpha (MASK or BLEND)

@@ -26,6 +26,8 @@ const char* use_name(SpectrumUse use) {
       return "a refractive index";
     case SpectrumUse::extinction:
       return "an extinction coefficient";
+    case SpectrumUse::coefficient:
+      return "a medium's coefficient";
   }
   return "a spectrum";
 }
@@ -35,6 +37,7 @@ bool allowed(SpectrumUse use, double v, const char*& range) {
   switch (use) {
     case SpectrumUse::emission:
     case SpectrumUse::extinction:
+    case SpectrumUse::coefficient:
       range = "finite and non-negative";
       return std::isfinite(v) && v >= 0;
     case SpectrumUse::reflectance:
@@ -107,8 +110,8 @@ TabulatedSpectrum checked_table(std::vector<double> lambdas, std::vector<double>
     if (!allowed(use, values[i], range))
       fail("{}: value {} at {} nm: {} must be {}", what, values[i], lambdas[i], use_name(use), range);
   }
-  // Light and reflectance stop where the table does; an index or extinction holds its end values.
-  const bool constants = use == SpectrumUse::index || use == SpectrumUse::extinction;
+  // Light and reflectance stop where the table does; an index or a coefficient holds its end values.
+  const bool constants = use == SpectrumUse::index || use == SpectrumUse::extinction || use == SpectrumUse::coefficient;
   return TabulatedSpectrum(std::vector<float>(lambdas.begin(), lambdas.end()),
                            std::vector<float>(values.begin(), values.end()),
                            constants ? TabulatedSpectrum::Outside::hold : TabulatedSpectrum::Outside::zero);

@@ -4,7 +4,7 @@
 //   "NAME"                                   a named illuminant (spectral/named_spectra.h)
 //   {"blackbody": KELVIN}                     Planck's law (for emission)
 //   {"wavelengths": [nm, …], "values": […]}   linear between the points (0 outside them, but for
-//                                             an index or extinction, which holds its end values)
+//                                             an index or a coefficient, which holds its end values)
 //   {"file": "name.csv"}                      the same from a file of two columns, nm and value
 //                                             (a header line and '#' comments allowed), which
 //                                             lies in the scene's folder (SceneFiles' policy)
@@ -26,6 +26,7 @@ enum class SpectrumUse {
   transmittance,  // the transmittance reached at a distance: in [0, 1]
   index,          // a refractive index n: > 0
   extinction,     // an extinction coefficient k: ≥ 0
+  coefficient,    // a medium's absorption or scattering per scene unit: ≥ 0
 };
 
 // A named illuminant, a blackbody of `kelvin`, or any spectrum, checked for `use` (an emission
@@ -42,7 +43,7 @@ TabulatedSpectrum parse_spectrum_csv(std::string_view text, SpectrumUse use, con
 
 // A tabulated spectrum from its points, checked for `use`: at least one point, wavelengths
 // strictly increasing within 100–100000 nm, every value finite and allowed. Outside the points an
-// emission, reflectance or transmittance is 0, an index or extinction holds its end values.
+// emission, reflectance or transmittance is 0, an index or a coefficient holds its end values.
 TabulatedSpectrum checked_table(std::vector<double> lambdas, std::vector<double> values, SpectrumUse use,
                                 const std::string& what);
 

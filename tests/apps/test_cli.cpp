@@ -372,6 +372,9 @@ TEST_CASE("prism render refuses bad output options before it reads the scene") {
            {"--colorspace Bogus", "Bogus"},
            {"--white-balance Bogus", "Bogus"},
            {"--spectral-bins 500,400", "500,400"},
+           {"--fog -1", "non-negative"},
+           {"--fog 0.1,0,2", "(-1, 1)"},
+           {"--fog 1,2,3,4", "SIGMA_S[,SIGMA_A[,G]]"},
        }) {
     std::string err;
     CHECK(test::run_prism(render + option, &err) == 1);

@@ -15,7 +15,8 @@ using namespace prism;
 namespace {
 
 Material glass(IorModel ior, std::optional<Spectrum> absorption = {}) {
-  return Material{.name = "glass", .kind = PbrMaterial::glass(Dielectric(std::move(ior), std::move(absorption)))};
+  return Material{.name = "glass",
+                  .kind = PbrMaterial::glass(Dielectric(std::move(ior), Medium{.sigma_a = std::move(absorption)}))};
 }
 
 // A closed glass icosphere under a uniform environment of radiance 1, filling the image.
@@ -65,7 +66,7 @@ TEST_CASE("Beer-Lambert: a slab transmits exp(-sigma_a d) straight on") {
       RayCounters counters;
       const auto L = path_radiance<1, true, true>(world, Ray{{0, 0, 3}, {0, 0, -1}, kInfinity}, lambda, sampler,
                                                   options, counters);
-      const Spectrum& sigma_a = *scene.materials[0].dielectric()->absorption;
+      const Spectrum& sigma_a = *scene.materials[0].dielectric()->interior.sigma_a;
       const double expected =
           std::exp(-double(evaluate(sigma_a, lambda[0])) * 0.5) * evaluate(*scene.environment, lambda[0]);
       INFO("sigma " << sigma << " lambda " << lambda[0]);

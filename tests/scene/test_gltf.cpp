@@ -212,10 +212,10 @@ TEST_CASE("glTF materials map to Prism's optics: transmission, ior, dispersion, 
   CHECK(d->dispersive);
   CHECK(ior(d->ior, 587.56f) == Approx(1.6).margin(1e-4));
   CHECK(abbe_number(d->ior) == Approx(40).epsilon(5e-3));  // V_d = 20 / dispersion
-  REQUIRE(d->absorption);
-  CHECK(evaluate(*d->absorption, 550) == Approx(std::log(2.0) / 2).epsilon(1e-3));  // −ln(0.5) / 2
+  REQUIRE(d->interior.sigma_a);
+  CHECK(evaluate(*d->interior.sigma_a, 550) == Approx(std::log(2.0) / 2).epsilon(1e-3));  // −ln(0.5) / 2
   // The colour is upsampled as the transmittance over attenuationDistance (see the slab render test).
-  const auto* sigma = std::get_if<RgbAbsorptionSpectrum>(&*d->absorption);
+  const auto* sigma = std::get_if<RgbAbsorptionSpectrum>(&*d->interior.sigma_a);
   REQUIRE(sigma);
   CHECK(sigma->inv_distance == Approx(0.5f));
   const SceneFeatures f = analyze_features(s);

@@ -184,8 +184,8 @@ TEST_CASE("a glTF material's extras take spectra, metals and glasses from tables
                  "KHR_materials_volume": {"thicknessFactor": 1, "attenuationDistance": 2}})")
                                   .materials.at(0)
                                   .kind);
-    REQUIRE(p.dielectric.absorption);
-    CHECK(evaluate(*p.dielectric.absorption, 550) == Approx(std::log(2.0) / 2).epsilon(1e-5));
+    REQUIRE(p.dielectric.interior.sigma_a);
+    CHECK(evaluate(*p.dielectric.interior.sigma_a, 550) == Approx(std::log(2.0) / 2).epsilon(1e-5));
   }
   // Bad input: one error naming the file, the material and the problem.
   const auto error = [&](const std::string& extras, const std::string& extensions = "") {
