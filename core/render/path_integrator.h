@@ -9,8 +9,13 @@
 
 namespace prism {
 
+// Scattering events in media a path may take: a random walk through a dense medium takes hundreds
+// or thousands, so they do not count as bounces (PathOptions::max_depth), and this bound, beyond
+// the walks that carry light, only ends a walk in an endless non-absorbing medium.
+inline constexpr int kMaxMediumEvents = 100000;
+
 struct PathOptions {
-  int max_depth = 16;            // bounces; 0 shows only what the camera sees emitting
+  int max_depth = 16;            // bounces at surfaces (kMaxMediumEvents in media); 0 shows only emitters
   bool russian_roulette = true;  // off: every path runs to max_depth (for exact checks)
   bool next_event = true;        // off: BSDF sampling only (lights found by chance; point lights never)
 };

@@ -101,6 +101,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
   // From the last scattering vertex to ray.o, over the BLEND surfaces passed: light met beyond them
   // is that much farther away (for area lights' solid-angle pdfs).
   float travelled = 0;
+  int medium_events = 0;  // scatterings in media so far (they are not counted in depth)
   MediumStack media(Media ? world.scene_medium() : nullptr);
   MediumCoefficients<N> medium;         // of the medium the path is in, at its wavelengths
   MediumCoefficients<N> beyond_medium;  // of the one beyond a surface, for light sampled through it
@@ -108,8 +109,9 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
   const PathSky<N> sky(world.environment(), lambda);
   BsdfCache<N> bsdf_cache;
 
-  // `vertex` counts every surface met, `depth` those the path scattered at (not passed through):
-  // each vertex has its own block of sampler dimensions, the depth limit counts bounces.
+  // `vertex` counts every surface and medium event met, `depth` the surfaces the path scattered at
+  // (not passed through): each vertex has its own block of sampler dimensions, the depth limit
+  // counts bounces, and depth + medium_events all scatterings.
   for (int depth = 0, vertex = 0;; ++vertex) {
     sampler.start_bounce(vertex);
     ++(vertex == 0 ? counters.primary : counters.secondary);
@@ -135,7 +137,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     if (t_scatter) {
       // A scattering event in the medium: light sampled towards it, and the path goes on in a
       // direction from the phase function, which samples itself exactly (weight 1).
-      if (depth == options.max_depth || beta.is_zero()) break;
+      if (depth == options.max_depth || beta.is_zero() || ++medium_events > kMaxMediumEvents) break;
       if (roulette_due && (roulette_due = false, !survives_roulette(beta, eta_scale, sampler))) break;
       const Vec3f p = ray.o + ray.d * *t_scatter;
       const HenyeyGreenstein& phase = in->phase;
@@ -157,8 +159,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
       bsdf_pdf_prev = phase.pdf(ray.d, wi);
       ::new (&ray) Ray{p, wi};
       travelled = 0;
-      roulette_due = options.russian_roulette && depth >= 1;
-      ++depth;
+      roulette_due = options.russian_roulette && depth + medium_events >= 2;
       continue;
     }
     const float alpha = si ? si->material->blend_opacity(si->at) : 1.f;  // < 1: an alpha BLEND surface, partly a hole
@@ -167,7 +168,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     // otherwise the MIS weight of BSDF sampling against light sampling (whose solid-angle pdf,
     // a callable, is evaluated only then).
     const auto add_emitted = [&](const SampledSpectrum<N>& Le, int light, const auto& light_pdf_solid_angle) {
-      if (depth == 0 || specular_bounce || !options.next_event) {
+      if (depth + medium_events == 0 || specular_bounce || !options.next_event) {
         L += beta * Le;
       } else {
         const float pmf = light_sampler.pmf(prev, uint32_t(light));
@@ -266,7 +267,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
       if constexpr (Media) media.cross(material, entering);
     }
 
-    roulette_due = options.russian_roulette && depth >= 1;
+    roulette_due = options.russian_roulette && depth + medium_events >= 1;
     if (beta.is_zero()) break;
     ++depth;
   }

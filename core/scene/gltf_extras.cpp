@@ -192,6 +192,36 @@ void GltfLoader::material_extras(const tinygltf::Material& m, int index, Materia
         fail("{}: sigma_a and KHR_materials_volume's attenuation both give the absorption; give one", what);
       if (!medium.sigma_a) medium.sigma_a = p.dielectric.interior.sigma_a;
       p.dielectric.interior = std::move(medium);
+    } else if (key == "subsurface") {
+      // Subsurface scattering as a random walk (Cycles' method): the surface becomes the
+      // material's dielectric interface (its index and roughness), and the closed mesh fills with
+      // a medium of mean free path 1/σ_t whose multiple-scattering albedo is the base colour (or
+      // the reflectance spectrum), wavelength by wavelength (medium_of_albedo).
+      if (!v.is_object() || !v.contains("mean_free_path"))
+        fail("{}: subsurface is {{\"mean_free_path\": METRES, \"g\": NUMBER}}", what);
+      if (prism->contains("medium")) fail("{}: a material takes \"medium\" or \"subsurface\", not both", what);
+      float mfp = 0, g = 0;
+      for (const auto& [field, x] : v.items()) {
+        if (field == "mean_free_path" && x.is_number() && x.get<double>() > 0 && x.get<double>() < 1e30)
+          mfp = float(x.get<double>());
+        else if (field == "g" && x.is_number() && std::abs(x.get<double>()) < 1)
+          g = float(x.get<double>());
+        else
+          fail("{}.{}: {}", what, field,
+               field == "mean_free_path" ? "must be a positive number of metres"
+               : field == "g"            ? "the phase function's asymmetry must be a number in (-1, 1)"
+                                         : "unknown key (subsurface has mean_free_path and g)");
+      }
+      if (p.base_color_texture)
+        warn_once(fmt::format("{}: the base colour texture is ignored under subsurface (the factor colours the medium)",
+                              context));
+      const Spectrum albedo = p.base_reflectance ? *p.base_reflectance : Spectrum(RgbAlbedoSpectrum(p.base_color));
+      p.dielectric = Dielectric(p.dielectric.ior, medium_of_albedo(ConstantSpectrum{1 / mfp}, albedo, g), false);
+      p.metallic = 0;
+      p.transmission = 1;
+      p.base_color = {1, 1, 1};  // the colour is the medium's: the surface is clear
+      p.base_reflectance.reset();
+      p.base_color_texture.reset();
     } else if (key == "emission") {
       const Spectrum s = parse_spectrum(v, SpectrumUse::emission, files_, what);
       const float y = luminance(out.emission_rgb);

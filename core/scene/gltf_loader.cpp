@@ -21,6 +21,8 @@ const std::map<std::string, const char*> kSupportedExtensions = {
     {"KHR_materials_ior", "the dielectric's index of refraction"},
     {"KHR_materials_volume", "closed volumes with Beer-Lambert absorption; thickness 0 is a thin wall"},
     {"KHR_materials_dispersion", "index varying with wavelength (Abbe number)"},
+    {"KHR_materials_volume_scatter",
+     "draft: the volume's attenuation scatters by multiscatterColor and scatterAnisotropy (factors, no textures)"},
     {"KHR_materials_specular", "specular strength and colour: the F0 of an exact Fresnel curve per wavelength"},
     {"KHR_materials_anisotropy", "anisotropic GGX along the tangent frame (strength, rotation, direction texture)"},
     {"KHR_texture_transform", "texture coordinate offset, rotation and scale"},

@@ -236,7 +236,18 @@ PbrMaterial GltfLoader::surface(const tinygltf::Material& m, Rgb base, const std
     }
     if (std::min({color.r, color.g, color.b}) < 1) absorption = RgbAbsorptionSpectrum(color, float(distance));
   }
-  p.dielectric = Dielectric(std::move(ior_model), Medium{.sigma_a = std::move(absorption)}, thickness == 0);
+  Medium interior{.sigma_a = std::move(absorption)};
+  // KHR_materials_volume_scatter (a draft, read as it stands; KHR_materials_scatter may replace it):
+  // the attenuation above is then the extinction σ_t, of which the share ρ_ss(multiscatterColor)
+  // scatters (medium_of_albedo), by a Henyey–Greenstein lobe of asymmetry scatterAnisotropy.
+  if (has("KHR_materials_volume_scatter") && interior.sigma_a && thickness > 0) {
+    const char* ext = "KHR_materials_volume_scatter";
+    const Rgb multiscatter = color(ext, "multiscatterColor", {0, 0, 0}, 0, 1);
+    const float g = float(number(ext, "scatterAnisotropy", 0, -0.999, 0.999));
+    if (multiscatter != Rgb{0, 0, 0})
+      interior = medium_of_albedo(*interior.sigma_a, RgbAlbedoSpectrum(multiscatter), g);
+  }
+  p.dielectric = Dielectric(std::move(ior_model), std::move(interior), thickness == 0);
   return p;
 }
 

@@ -20,12 +20,12 @@ using namespace prism;
 
 namespace {
 
-// The closed box [−1, 1]³, faces wound counter-clockwise seen from outside.
-Mesh make_box(uint32_t material) {
+// The closed box [lo, hi], faces wound counter-clockwise seen from outside.
+Mesh make_box(uint32_t material, const Vec3f& lo = Vec3f(-1, -1, -1), const Vec3f& hi = Vec3f(1, 1, 1)) {
   Mesh mesh;
   mesh.name = "box";
   for (int i = 0; i < 8; ++i)
-    mesh.positions.push_back(Vec3f(i & 1 ? 1.f : -1.f, i & 2 ? 1.f : -1.f, i & 4 ? 1.f : -1.f));
+    mesh.positions.push_back(Vec3f(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z));
   for (int axis = 0; axis < 3; ++axis)
     for (int side = 0; side < 2; ++side) {
       // The face's corners in order around it, then each triangle turned to face outwards.
@@ -65,30 +65,32 @@ Medium isotropic(float sigma_s, float sigma_a) {
   return Medium{.sigma_a = ConstantSpectrum{sigma_a}, .sigma_s = ConstantSpectrum{sigma_s}, .phase = {0.f}};
 }
 
-// Brute force, independent of the renderer: radiance leaving the index-matched box straight up
-// at a point uniform in [−h, h]² of its top face, under a uniform environment of radiance 1, with
-// isotropic scattering: the mean over analog random walks (followed backwards, from the camera)
-// of the single-scattering albedo σ_s/σ_t to the power of the number of scatterings before the walk
-// leaves the box.
-double walk_radiance(double sigma_s, double sigma_a, float h, int walks, Rng& rng) {
+// Brute force, independent of the renderer: radiance leaving an index-matched box straight up at
+// a point uniform in [−h, h]² of its top face z = 1, under a uniform environment of radiance 1, with
+// isotropic scattering: the share of analog random walks (followed backwards, from the camera,
+// absorbed at each scattering with probability 1 − σ_s/σ_t) that leave the box. The box is
+// [−1, 1]³, or with `half_space` the half-space z < 1.
+double walk_radiance(double sigma_s, double sigma_a, float h, int walks, Rng& rng, bool half_space = false) {
   const double sigma_t = sigma_s + sigma_a, albedo = sigma_s / sigma_t;
-  double sum = 0;
+  int left = 0;
   for (int i = 0; i < walks; ++i) {
     Vec3f p((2 * rng.uniform() - 1) * h, (2 * rng.uniform() - 1) * h, 1.f), d(0, 0, -1);
-    double weight = 1;
     for (;;) {
-      float exit = kInfinity;  // distance to the box's boundary along d
-      for (int a = 0; a < 3; ++a)
-        if (d[a] != 0) exit = std::min(exit, ((d[a] > 0 ? 1.f : -1.f) - p[a]) / d[a]);
+      float exit = d.z > 0 ? (1 - p.z) / d.z : kInfinity;  // distance to the boundary along d
+      if (!half_space)
+        for (int a = 0; a < 3; ++a)
+          if (d[a] != 0) exit = std::min(exit, ((d[a] > 0 ? 1.f : -1.f) - p[a]) / d[a]);
       const double t = -std::log(1 - double(rng.uniform())) / sigma_t;
-      if (t >= exit) break;
+      if (t >= exit) {
+        ++left;
+        break;
+      }
+      if (rng.uniform() >= albedo) break;  // absorbed
       p = p + d * float(t);
-      weight *= albedo;
       d = sample_uniform_sphere({rng.uniform(), rng.uniform()});
     }
-    sum += weight;
   }
-  return sum / walks;
+  return double(left) / walks;
 }
 
 RenderOptions options(int spp, int wavelengths = kDefaultWavelengths, bool next_event = true) {
@@ -216,6 +218,50 @@ TEST_CASE("in absorbing fog every integrator dims light as exp(-sigma_a d) over 
     const auto img = test::render_rgb(scene, camera, 4, 4, o);
     CHECK(img.stats.invalid_samples == 0);
     test::check_mean(img, 0, 0, 4, 4, expected, 0.02 * expected * test::kErrorScale);
+  }
+}
+
+TEST_CASE("subsurface: a thick slab reflects what a random walk in a half-space finds, about its colour") {
+  // The slab is 400 mean free paths deep and 2000 wide under a uniform environment: a half-space,
+  // seen straight down. Its medium is medium_of_albedo's for a multiple-scattering albedo ρ_ms
+  // (the subsurface colour); the walk uses the same single-scattering albedo, so the render must
+  // match it, and the fit must give about ρ_ms back (Kulla and Conty fitted an average over
+  // directions: seen straight on, a slab is up to 0.05 darker).
+  for (const float rho_ms : {0.3f, 0.8f, 0.95f}) {
+    INFO("multiple-scattering albedo " << rho_ms);
+    const Medium medium = medium_of_albedo(ConstantSpectrum{10.f}, ConstantSpectrum{rho_ms}, 0.f);
+    const double sigma_s = evaluate(*medium.sigma_s, 550), sigma_a = evaluate(*medium.sigma_a, 550);
+    CHECK(sigma_s + sigma_a == Approx(10).epsilon(1e-5));
+    Rng rng(17, 0);
+    const double expected = walk_radiance(sigma_s, sigma_a, 0.5f, 100000, rng, true);
+    CHECK(expected <= rho_ms);  // seen straight on, at most the colour and within 0.06 of it (0.25 for 0.3)
+    CHECK(expected >= rho_ms - 0.06);
+    Scene scene;
+    scene.materials.push_back(
+        Material{.name = "slab", .kind = PbrMaterial::glass(Dielectric(ConstantIor{1.f}, medium))});
+    test::add_mesh(scene, make_box(0, {-100, -100, -39}, {100, 100, 1}));
+    scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
+    const auto img = test::render_rgb(scene, looking_down(0.5f), 16, 16, options(256));
+    CHECK(img.stats.invalid_samples == 0);
+    test::check_mean(img, 0, 0, 16, 16, expected, 0.012 * test::kErrorScale);
+  }
+}
+
+TEST_CASE("subsurface under a glass surface conserves energy: albedo 1 returns the environment, less never more") {
+  for (const float rho_ms : {1.f, 0.6f}) {
+    INFO("multiple-scattering albedo " << rho_ms);
+    const Medium medium = medium_of_albedo(ConstantSpectrum{20.f}, ConstantSpectrum{rho_ms}, 0.3f);
+    Scene scene;
+    scene.materials.push_back(
+        Material{.name = "wax", .kind = PbrMaterial::glass(Dielectric(ConstantIor{1.4f}, medium), 0.3f)});
+    test::add_mesh(scene, make_box(0));
+    scene.environment = RgbIlluminantSpectrum(Rgb{1, 1, 1});
+    const auto img = test::render_rgb(scene, looking_down(0.9f), 16, 16, options(128));
+    CHECK(img.stats.invalid_samples == 0);
+    if (rho_ms == 1)
+      test::check_mean(img, 0, 0, 16, 16, 1.0, 0.01 * test::kErrorScale);
+    else
+      for (int c = 0; c < 3; ++c) CHECK(img.mean(c) < 0.95);
   }
 }
 

@@ -10,6 +10,7 @@
 #include "core/base/error.h"
 #include "core/scene/gltf_loader.h"
 #include "core/scene/scene_features.h"
+#include "materials/ior.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/test_scenes.h"
 
@@ -90,6 +91,50 @@ TEST_CASE("a material's medium fills its closed volume; the scene's fills the sp
     CHECK(f.scene_medium);
     CHECK(f.scattering);
   }
+}
+
+TEST_CASE("KHR_materials_volume_scatter and extras subsurface: a colour and a distance become a scattering medium") {
+  const auto dir = test::temp_dir("gltf_scatter");
+  {  // the draft: attenuation is the extinction, multiscatterColor the albedo after many bounces
+    const Scene s = load_gltf(write_scene(dir, R"("pbrMetallicRoughness": {"metallicFactor": 0},
+        "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
+          "KHR_materials_volume": {"thicknessFactor": 1, "attenuationDistance": 0.5,
+                                   "attenuationColor": [0.2, 0.2, 0.2]},
+          "KHR_materials_volume_scatter": {"multiscatterColor": [0.8, 0.8, 0.8], "scatterAnisotropy": 0.4}})",
+                                          ""));
+    const Dielectric* d = s.materials.at(0).dielectric();
+    REQUIRE(d);
+    REQUIRE(d->interior.scatters());
+    const float sigma_t = -std::log(0.2f) / 0.5f;
+    const float s550 = evaluate(*d->interior.sigma_s, 550), a550 = evaluate(*d->interior.sigma_a, 550);
+    CHECK(s550 + a550 == Approx(sigma_t).epsilon(0.02));  // the grey upsampled to within 2% at 550 nm
+    CHECK(s550 / (s550 + a550) == Approx(single_scattering_albedo(0.8f)).epsilon(0.01));
+    CHECK(d->interior.phase.g == Approx(0.4f));
+  }
+  {  // extras subsurface: the base colour is the medium's, the surface a clear interface of its index
+    const Scene s = load_gltf(write_scene(dir, R"("pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.6, 0.5, 1],
+        "metallicFactor": 0, "roughnessFactor": 0.4}, "extensions": {"KHR_materials_ior": {"ior": 1.4}})",
+                                          R"({"subsurface": {"mean_free_path": 0.002, "g": 0.2}})"));
+    const Material& m = s.materials.at(0);
+    const PbrMaterial& p = std::get<PbrMaterial>(m.kind);
+    const Dielectric* d = m.dielectric();
+    REQUIRE(d);
+    CHECK_FALSE(d->thin_walled);
+    CHECK(p.transmission == 1);
+    CHECK(p.roughness == Approx(0.4f));
+    CHECK(p.base_color == Rgb{1, 1, 1});
+    CHECK(ior(d->ior, 550) == Approx(1.4f));
+    const float red = evaluate(*d->interior.sigma_s, 650), blue = evaluate(*d->interior.sigma_s, 450);
+    CHECK(red + evaluate(*d->interior.sigma_a, 650) == Approx(500));  // 1 / mean free path
+    CHECK(red > blue);  // a reddish colour scatters red light more and absorbs it less
+    CHECK(d->interior.phase.g == Approx(0.2f));
+  }
+  const auto error = [&](const std::string& prism) {
+    return error_of([&] { load_gltf(write_scene(dir, "", prism)); });
+  };
+  CHECK(error(R"({"subsurface": {"mean_free_path": 0}})").find("positive number of metres") != std::string::npos);
+  CHECK(error(R"({"subsurface": {"g": 0.5}})").find("mean_free_path") != std::string::npos);
+  CHECK(error(R"({"subsurface": {"mean_free_path": 1, "radius": 2}})").find("unknown key") != std::string::npos);
 }
 
 TEST_CASE("a bad medium gives one error naming the file, the material and the problem") {
