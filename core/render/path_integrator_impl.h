@@ -93,11 +93,11 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
   // At a dispersive interface the lanes' pdfs of a direction differ: path_pdfs are the path's pdfs
   // under each lane as the hero, relative to each other, for spectral MIS (dispersive_bsdf.h).
   SampledSpectrum<N> L(0.f), beta(1.f), path_pdfs(1.f);
-  bool specular_bounce = false;
-  float bsdf_pdf_prev = 0.f;  // solid-angle pdf of the BSDF sample that made `ray`
-  LightSampleContext prev;    // that vertex, as it chose a light (and sampled the environment)
-  float eta_scale = 1.f;      // Π η² of the refractions so far: undoes radiance scaling for roulette
-  bool roulette_due = false;  // a bounce since the last roulette, and past the first one
+  bool no_light_sampled = false;  // the last vertex sampled no light (specular, or in a closed medium)
+  float bsdf_pdf_prev = 0.f;      // solid-angle pdf of the BSDF sample that made `ray`
+  LightSampleContext prev;        // that vertex, as it chose a light (and sampled the environment)
+  float eta_scale = 1.f;          // Π η² of the refractions so far: undoes radiance scaling for roulette
+  bool roulette_due = false;      // a bounce since the last roulette, and past the first one
   // From the last scattering vertex to ray.o, over the BLEND surfaces passed: light met beyond them
   // is that much farther away (for area lights' solid-angle pdfs).
   float travelled = 0;
@@ -136,13 +136,18 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     }
     if (t_scatter) {
       // A scattering event in the medium: light sampled towards it, and the path goes on in a
-      // direction from the phase function, which samples itself exactly (weight 1).
+      // direction from the phase function, which samples itself exactly (weight 1). Inside a
+      // closed dielectric (milk, wax) a shadow ray meets the enclosing surface before any light
+      // outside it, so no light is sampled there: light the phase function finds then takes its
+      // full weight, exactly as after a specular bounce (only a light inside the medium is found
+      // less easily).
+      const bool sample_light = options.next_event && !media.innermost();
       if (depth == options.max_depth || beta.is_zero() || ++medium_events > kMaxMediumEvents) break;
       if (roulette_due && (roulette_due = false, !survives_roulette(beta, eta_scale, sampler))) break;
       const Vec3f p = ray.o + ray.d * *t_scatter;
       const HenyeyGreenstein& phase = in->phase;
       prev = {p, Vec3f(0.f, 0.f, 0.f), Vec3f(0.f, 0.f, 0.f)};
-      if (options.next_event)
+      if (sample_light)
         L += beta * sample_direct<N>(world, prev, sampler, [&](const Light& light, Vec2f u) {
                auto s = sample_li(light, prev, u, lambda, &sky);
                if (!s || s->L.is_zero()) return std::optional<LightContribution<N>>();
@@ -155,7 +160,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
                return std::optional(c);
              });
       const Vec3f wi = phase.sample(ray.d, sampler.get_2d());
-      specular_bounce = false;
+      no_light_sampled = !sample_light;
       bsdf_pdf_prev = phase.pdf(ray.d, wi);
       ::new (&ray) Ray{p, wi};
       travelled = 0;
@@ -164,11 +169,11 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     }
     const float alpha = si ? si->material->blend_opacity(si->at) : 1.f;  // < 1: an alpha BLEND surface, partly a hole
 
-    // Light reached without sampling it: full weight after a camera or specular vertex,
+    // Light reached without sampling it: full weight after the camera or a vertex that sampled none,
     // otherwise the MIS weight of BSDF sampling against light sampling (whose solid-angle pdf,
     // a callable, is evaluated only then).
     const auto add_emitted = [&](const SampledSpectrum<N>& Le, int light, const auto& light_pdf_solid_angle) {
-      if (depth + medium_events == 0 || specular_bounce || !options.next_event) {
+      if (depth + medium_events == 0 || no_light_sampled || !options.next_event) {
         L += beta * Le;
       } else {
         const float pmf = light_sampler.pmf(prev, uint32_t(light));
@@ -257,7 +262,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     const Vec3f wi = frame.to_world(bs->wi);
     if (wrong_side(*si, wi, bs->transmission)) break;
     beta *= bs->f * (abs_cos_theta(bs->wi) / bs->pdf);
-    specular_bounce = bs->specular;
+    no_light_sampled = bs->specular;
     bsdf_pdf_prev = bs->pdf;
     prev = {si->p, si->p_error, si->n, reflect_axis};
     ::new (&ray) Ray(si->spawn(wi));  // in place, as render_tile's camera rays are (renderer.cpp)
