@@ -40,14 +40,14 @@ SampledSpectrum<N> sample_direct(const World& world, const LightSampleContext& a
 // light only if the lanes' distance sampling then passes the segment, so its pdf for MIS is
 // Σ q_j p_j(wi) T_j / Σ q_j (medium_sampling.h): p̄ × the mean T, with a dispersive BSDF's lanes'
 // pdfs weighted by q_j T_j rather than q_j (the phase function's and other BSDFs' are the same in
-// every lane).
+// every lane). `bsdf` is the BSDF at a surface, or the phase function at a medium's point.
 template <int N, class B>
 void through_medium(LightContribution<N>& c, const MediumCoefficients<N>& medium, bool scattering, const B& bsdf,
                     const Vec3f& wo, const Frame& frame, SampledSpectrum<N>& path_pdfs) {
   const SampledSpectrum<N> T = medium.transmittance(c.distance);
   c.f_L *= T;
   if (!scattering) return;
-  if constexpr (std::is_same_v<B, DispersiveBsdf<N>>) {
+  if constexpr (std::is_same_v<B, DispersiveBsdf<N>>) {  // (wo and frame serve only here)
     const SampledSpectrum<N> q = path_pdfs;
     path_pdfs *= T;  // the lanes' weights in the dispersive BSDF's p̄
     c.bsdf_pdf = path_pdfs.max() > 0 ? bsdf_eval(bsdf, wo, frame.to_local(c.wi)).pdf : 0.f;
@@ -143,7 +143,10 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
       // less easily).
       const bool sample_light = options.next_event && !media.innermost();
       if (depth == options.max_depth || beta.is_zero() || ++medium_events > kMaxMediumEvents) break;
-      if (roulette_due && (roulette_due = false, !survives_roulette(beta, eta_scale, sampler))) break;
+      if (roulette_due) {
+        roulette_due = false;
+        if (!survives_roulette(beta, eta_scale, sampler)) break;
+      }
       const Vec3f p = ray.o + ray.d * *t_scatter;
       const HenyeyGreenstein& phase = in->phase;
       prev = {p, Vec3f(0.f, 0.f, 0.f), Vec3f(0.f, 0.f, 0.f)};
@@ -156,7 +159,7 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
                const float f = phase.eval(ray.d, s->wi);
                if (visible == 0 || f == 0) return std::optional<LightContribution<N>>();
                LightContribution<N> c{s->L * (visible * f), s->pdf, f, s->wi, s->shadow_ray.tmax};
-               through_medium(c, medium, true, phase, Vec3f(), Frame(), path_pdfs);  // (wo, frame unused)
+               through_medium(c, medium, true, phase, Vec3f(), Frame(), path_pdfs);
                return std::optional(c);
              });
       const Vec3f wi = phase.sample(ray.d, sampler.get_2d());
@@ -207,7 +210,10 @@ SampledSpectrum<N> path_radiance(const World& world, Ray ray, const SampledWavel
     // Russian roulette from the third surface on, where the path meets it and before shading it
     // (Cycles' rule): a ray that leaves for the sky is never cut short, so the sky's light, most of
     // an open scene's, carries no roulette noise.
-    if (roulette_due && (roulette_due = false, !survives_roulette(beta, eta_scale, sampler))) break;
+    if (roulette_due) {
+      roulette_due = false;
+      if (!survives_roulette(beta, eta_scale, sampler)) break;
+    }
 
     const bool entering = si->front_face();
     const Dielectric* front = Media ? media.front_dielectric(material, entering) : nullptr;
