@@ -67,7 +67,9 @@ void trace_light_path(const BdptScene& scene, SampledWavelengths<N>& lambda, Sam
     ++counters.secondary;
     const auto si = world.intersect(ray);
     if (!si) break;
-    if (scene.media) beta *= transmittance(media.medium(), si->t, lambda);
+    // (Light from infinitely far crosses an infinite extent of the scene's medium, as a shadow ray
+    // to it does, not just the stretch from the disk its paths start on.)
+    if (scene.media) beta *= transmittance(media.medium(), length > 1 || finite ? si->t : kInfinity, lambda);
     m.arrive(si->t, abs_dot(si->n, si->wo), length > 1 || finite);
     if (length == 1)
       m.vcm *= mis(world.light_sampler().pmf(LightSampleContext{si->p, si->p_error, si->n}, index) / pick);
@@ -201,7 +203,9 @@ void splat_to_camera(const BdptScene& scene, const LightVertex<N>& v, Vec2f u_le
   ++counters.shadow;
   if (scene.world.occluded(spawn_ray_to(v.si.p, v.si.p_error, v.si.n, c->point, {}, {}))) return;
   const float weight = scene.light_tracing ? 1.f : 1.f / (1.f + w_light);
-  const SampledSpectrum<N> L = v.beta * f * (c->importance * weight / scene.light_paths);
+  SampledSpectrum<N> L = v.beta * f * (c->importance * weight / scene.light_paths);
+  // The camera is in the scene's medium, and so is any vertex it sees unoccluded.
+  if (scene.media) L *= transmittance(scene.world.scene_medium(), length(c->point - v.si.p), lambda);
   if (!splats.add(c->raster.x, c->raster.y, to_xyz(v.hero_only ? hero_lane(L) : L, lambda))) ++invalid;
 }
 

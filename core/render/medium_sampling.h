@@ -79,7 +79,8 @@ MediumEvent<N> sample_medium_event(const MediumCoefficients<N>& c, float t_max, 
   const float mean = (path_pdfs * pdf).average() / path_pdfs.average();
   path_pdfs *= pdf;
   if (const float m = path_pdfs.max(); m > 0) path_pdfs /= m;
-  return {scattered, scattered ? t : t_max, mean > 0 ? f / mean : SampledSpectrum<N>(0.f), mean};
+  if (!(mean > 0)) return {scattered, scattered ? t : t_max, SampledSpectrum<N>(0.f), 0.f};
+  return {scattered, scattered ? t : t_max, f / mean, mean};
 }
 
 // The mean transmittance of a segment weighted by the path's pdfs under each lane, Σ q_j T_j / Σ q_j:

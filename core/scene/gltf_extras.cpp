@@ -98,8 +98,10 @@ Medium GltfLoader::medium_extras(const Json& v, const std::string& what) {
   for (const auto& [key, value] : v.items()) {
     if (key == "sigma_a") {
       medium.sigma_a = parse_coefficient(value, files_, what + ".sigma_a");
+      if (value == 0) medium.sigma_a.reset();  // 0: none (a medium that scatters nothing is no scattering medium)
     } else if (key == "sigma_s") {
       medium.sigma_s = parse_coefficient(value, files_, what + ".sigma_s");
+      if (value == 0) medium.sigma_s.reset();
     } else if (key == "g") {
       if (!value.is_number() || !(std::abs(value.get<double>()) < 1))
         fail("{}.g: the phase function's asymmetry must be a number in (-1, 1)", what);
@@ -126,6 +128,8 @@ void GltfLoader::material_extras(const tinygltf::Material& m, int index, Materia
   for (const auto& [key, v] : prism->items()) {
     const std::string what = where + ": extras.prism." + key;
     if (key == "metal") {
+      if (prism->contains("medium") || prism->contains("subsurface"))
+        fail("{}: a metal has no medium inside it (\"medium\", \"subsurface\")", what);
       if (v.is_string()) {
         p.metal = MaterialCatalogue::standard().metal(v.get<std::string>());
       } else if (v.is_object() && v.contains("nk")) {

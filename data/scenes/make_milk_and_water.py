@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Generate data/scenes/milk_and_water.gltf: a glass of milk beside a glass of water.
 
-Two thin-walled tumblers (IOR 1.5) on a white table under one small light and a dim sky: one holds
+Two glass tumblers (IOR 1.5, walls 2 mm thick) on a white table under one small light and a dim sky: one holds
 water (IOR 1.33, a faint blue-green absorption), the other whole milk (IOR 1.35), a scattering
 medium given in the material's extras: Jensen et al. 2001 ("A Practical Model for Subsurface Light
 Transport", SIGGRAPH, table 2) measured whole milk's reduced scattering σ_s' = 2.55, 3.21, 3.77 and

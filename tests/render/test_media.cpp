@@ -139,33 +139,40 @@ TEST_CASE(
     "agree") {
   // σ_t rises linearly from 0.3 at 360 nm to 3 at 830 nm, two thirds of it scattering: blue light
   // mostly crosses the box, red scatters many times and is absorbed, and the hero's distance
-  // density differs up to tenfold from its companions'.
-  const Spectrum sigma_s = TabulatedSpectrum({kLambdaMin, kLambdaMax}, {0.2f, 2.f});
-  const Spectrum sigma_a = TabulatedSpectrum({kLambdaMin, kLambdaMax}, {0.1f, 1.f});
-  const Medium medium{.sigma_a = sigma_a, .sigma_s = sigma_s, .phase = {0.f}};
-  // The walk at every 5 nm, times the environment's spectrum, integrated against the CIE 1931
-  // functions and converted as the film is.
-  Rng rng(5, 0);
-  std::vector<float> lambdas, walked, values;
-  const Spectrum env = RgbIlluminantSpectrum(Rgb{1, 1, 1});
-  for (float l = kLambdaMin; l <= kLambdaMax; l += 5) {
-    lambdas.push_back(l);
-    walked.push_back(float(walk_radiance(evaluate(sigma_s, l), evaluate(sigma_a, l), 0.5f, 20000, rng)));
-    values.push_back(walked.back() * evaluate(env, l));
-  }
-  CHECK(walked.back() < 0.6f * walked.front());  // the test sees a spectrum, not a grey
-  const Xyz xyz = spectrum_to_xyz(TabulatedSpectrum(lambdas, values));
-  float expected[3] = {xyz.x, xyz.y, xyz.z};
-  ColorPipeline::standard().convert(ColorPipeline::kXyz, ColorPipeline::kDefaultOutput, expected, 1);
-  const Scene scene = medium_box(medium);
-  const auto one = test::render_rgb(scene, looking_down(0.5f), 8, 8, options(2048, 1));
-  const auto eight = test::render_rgb(scene, looking_down(0.5f), 8, 8, options(512, 8));
-  for (const auto* img : {&one, &eight}) {
-    CHECK(img->stats.invalid_samples == 0);
-    for (int c = 0; c < 3; ++c) {
-      INFO((img == &one ? "one wavelength" : "eight wavelengths") << ", channel " << c);
-      REQUIRE(img->standard_error(c, 0, 0, 8, 8) <= 0.004 * test::kErrorScale);
-      CHECK(img->mean(c, 0, 0, 8, 8) == Approx(expected[c]).margin(0.015 * test::kErrorScale));
+  // density differs up to tenfold from its companions'. Then a medium that leaves light below
+  // 500 nm alone (σ_t = 0 there: such a hero never scatters, its companions must).
+  const auto ramp = [](float at_360, float at_500, float at_830) {
+    return Spectrum(TabulatedSpectrum({kLambdaMin, 500.f, kLambdaMax}, {at_360, at_500, at_830}));
+  };
+  const float tenfold_500 = 0.2f + (2.f - 0.2f) * (500 - kLambdaMin) / (kLambdaMax - kLambdaMin);
+  for (const auto& [sigma_s, sigma_a] : {std::pair{ramp(0.2f, tenfold_500, 2.f), ramp(0.1f, tenfold_500 / 2, 1.f)},
+                                         std::pair{ramp(0.f, 0.f, 2.f), ramp(0.f, 0.f, 1.f)}}) {
+    INFO("sigma_s at 360 nm " << evaluate(sigma_s, kLambdaMin));
+    const Medium medium{.sigma_a = sigma_a, .sigma_s = sigma_s, .phase = {0.f}};
+    // The walk at every 5 nm, times the environment's spectrum, integrated against the CIE 1931
+    // functions and converted as the film is.
+    Rng rng(5, 0);
+    std::vector<float> lambdas, walked, values;
+    const Spectrum env = RgbIlluminantSpectrum(Rgb{1, 1, 1});
+    for (float l = kLambdaMin; l <= kLambdaMax; l += 5) {
+      lambdas.push_back(l);
+      walked.push_back(float(walk_radiance(evaluate(sigma_s, l), evaluate(sigma_a, l), 0.5f, 20000, rng)));
+      values.push_back(walked.back() * evaluate(env, l));
+    }
+    CHECK(walked.back() < 0.6f * walked.front());  // the test sees a spectrum, not a grey
+    const Xyz xyz = spectrum_to_xyz(TabulatedSpectrum(lambdas, values));
+    float expected[3] = {xyz.x, xyz.y, xyz.z};
+    ColorPipeline::standard().convert(ColorPipeline::kXyz, ColorPipeline::kDefaultOutput, expected, 1);
+    const Scene scene = medium_box(medium);
+    const auto one = test::render_rgb(scene, looking_down(0.5f), 8, 8, options(2048, 1));
+    const auto eight = test::render_rgb(scene, looking_down(0.5f), 8, 8, options(512, 8));
+    for (const auto* img : {&one, &eight}) {
+      CHECK(img->stats.invalid_samples == 0);
+      for (int c = 0; c < 3; ++c) {
+        INFO((img == &one ? "one wavelength" : "eight wavelengths") << ", channel " << c);
+        REQUIRE(img->standard_error(c, 0, 0, 8, 8) <= 0.004 * test::kErrorScale);
+        CHECK(img->mean(c, 0, 0, 8, 8) == Approx(expected[c]).margin(0.015 * test::kErrorScale));
+      }
     }
   }
 }
@@ -265,9 +272,42 @@ TEST_CASE("subsurface under a glass surface conserves energy: albedo 1 returns t
   }
 }
 
+TEST_CASE("in absorbing fog, light traced onto the film and light gathered from the camera agree") {
+  // A floor filling the view under a point light, in absorbing fog: light tracing reaches the
+  // camera only by its connections through the fog, the path tracer by its shadow rays and camera
+  // rays; both unbiased, they must agree within their noise. And light from infinitely far (a
+  // directional light) crosses infinitely much fog, for every integrator.
+  Scene scene;
+  scene.materials.push_back(Material{.name = "floor", .kind = DiffuseMaterial{ConstantSpectrum{0.5f}}});
+  test::add_mesh(scene, test::make_quad({-3, 0, 3}, {6, 0, 0}, {0, 0, -6}, 0));  // faces +y
+  scene.point_lights.push_back(PointLight{"lamp", {0, 1, 0}, RgbIlluminantSpectrum(Rgb{4, 4, 4})});
+  scene.medium = Medium{.sigma_a = ConstantSpectrum{0.3f}};
+  const CameraDesc camera = test::look_at({0, 2, 0.01f}, {0, 0, 0}, 60.f);
+  RenderOptions o = options(64);
+  const auto path = test::render_rgb(scene, camera, 16, 16, o);
+  o.integrator = IntegratorKind::light;
+  o.spp = test::sanitized_samples(256);
+  const auto light = test::render_rgb(scene, camera, 16, 16, o);
+  for (int c = 0; c < 3; ++c) {
+    INFO("channel " << c << ": path " << path.mean(c) << ", light tracing " << light.mean(c));
+    const auto d = test::mean_difference(path, light, c);
+    CHECK(std::abs(d.difference) <= 4 * d.standard_error + 1e-4);
+    CHECK(d.standard_error <= 0.01 * path.mean(c) * test::kErrorScale);
+  }
+  scene.point_lights.clear();
+  scene.directional_lights.push_back(DirectionalLight{"sun", {0, -1, 0}, RgbIlluminantSpectrum(Rgb{3, 3, 3})});
+  for (const IntegratorKind kind : {IntegratorKind::path, IntegratorKind::bdpt, IntegratorKind::light}) {
+    INFO("integrator " << integrator(kind).name);
+    RenderOptions s = options(16);
+    s.integrator = kind;
+    CHECK(test::render_rgb(scene, camera, 8, 8, s).mean(1) == 0);
+  }
+}
+
 TEST_CASE("integrators that do not render scattering media refuse the scene, naming the one that does") {
   const Scene scene = medium_box(isotropic(1, 0));
-  for (const IntegratorKind kind : {IntegratorKind::whitted, IntegratorKind::bdpt, IntegratorKind::vcm}) {
+  for (const IntegratorKind kind :
+       {IntegratorKind::whitted, IntegratorKind::bdpt, IntegratorKind::vcm, IntegratorKind::light}) {
     RenderOptions o = options(1);
     o.integrator = kind;
     CHECK_THROWS_WITH(test::render_rgb(scene, looking_down(0.5f), 4, 4, o),

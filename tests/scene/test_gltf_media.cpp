@@ -87,6 +87,10 @@ TEST_CASE("a material's medium fills its closed volume; the scene's fills the sp
     REQUIRE(s.medium);
     CHECK(evaluate(*s.medium->sigma_s, 500) == Approx(0.02));
     CHECK(s.medium->phase.g == 0);
+    // A coefficient of 0 is none: a medium whose sigma_s is 0 does not scatter.
+    const Scene clear = load_gltf(write_scene(dir, kVolume, R"({"medium": {"sigma_s": 0, "sigma_a": 2}})"));
+    CHECK_FALSE(clear.materials.at(0).dielectric()->interior.scatters());
+    CHECK_FALSE(analyze_features(clear).scattering);
     const SceneFeatures f = analyze_features(s);
     CHECK(f.scene_medium);
     CHECK(f.scattering);
@@ -160,5 +164,6 @@ TEST_CASE("a bad medium gives one error naming the file, the material and the pr
           R"({"medium": {"sigma_a": 1}})"),
       "give one");
   has(error(kVolume, "{}", R"({"medium": {"g": 2}})"), "scene 0: extras.prism.medium.g");
+  has(error(kVolume, R"({"medium": {"sigma_s": 1}, "metal": "Au"})"), "a metal has no medium");
   CHECK(error(kVolume, R"({"medium": {"sigma_s": -1}})").find("material 0") != std::string::npos);
 }
