@@ -173,6 +173,25 @@ def lathe(centre, profile, segments):
                 idx += [b, c_, d]
     return {"positions": pos, "normals": nrm, "indices": idx}
 
+def tumbler_profiles(radius, height, wall, bottom, liquid_top, gap):
+    """lathe() profiles of a tumbler of outer `radius` and `height`, with walls `wall` and a base
+    `bottom` thick, and of the liquid in it up to `liquid_top`, `gap` short of the glass all round
+    (an air film, so that no two surfaces coincide)."""
+    glass = [(0.0, 0.0), (radius, 0.0), (radius, height), (radius - wall, height), (radius - wall, bottom),
+             (0.0, bottom)]
+    r = radius - wall - gap
+    liquid = [(0.0, bottom + gap), (r, bottom + gap), (r, liquid_top), (0.0, liquid_top)]
+    return glass, liquid
+
+def facing_square(centre, target, size):
+    """A square of edge `size` at centre, its front side facing target."""
+    n = normalize(sub(target, centre))
+    u = normalize(cross(n, (0.0, 1.0, 0.0)))
+    v = cross(u, n)
+    h = size / 2
+    at = lambda a, b: add(centre, add(scale(u, a * h), scale(v, b * h)))
+    return quad(at(-1, -1), at(-1, 1), at(1, 1), at(1, -1))
+
 # ---------------------------------------------------------------- materials
 def diffuse(name, rgb):
     return {"name": name, "pbrMetallicRoughness": {

@@ -13,8 +13,8 @@ Standard library only (helpers in gltf_builder.py).
 """
 import os
 
-from gltf_builder import (add, build_gltf, cross, emitter, glass, lambert, lathe, look_at_camera, normalize, quad,
-                          scale, sub, with_attenuation, write_gltf)
+from gltf_builder import (build_gltf, emitter, facing_square, glass, lambert, lathe, look_at_camera, quad,
+                          tumbler_profiles, with_attenuation, write_gltf)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -29,19 +29,7 @@ GLASS = glass("glass", 1.5, None, 0.002)
 WATER = with_attenuation(glass("water", 1.33, None, 0.05), (0.9, 0.97, 0.98), 0.1)
 LIGHT = emitter("light", (1.0, 1.0, 1.0), 400.0, (0.0, 0.0, 0.0))
 
-# Profiles in (radius, height), counter-clockwise (the material on the left).
-TUMBLER = [(0.0, 0.0), (R, 0.0), (R, H), (R - WALL, H), (R - WALL, BOTTOM), (0.0, BOTTOM)]
-r_w = R - WALL - GAP
-WATER_BODY = [(0.0, BOTTOM + GAP), (r_w, BOTTOM + GAP), (r_w, WATER_TOP), (0.0, WATER_TOP)]
-
-def facing_square(centre, target, size):
-    """A square of edge `size` at centre, its front side facing target."""
-    n = normalize(sub(target, centre))
-    u = normalize(cross(n, (0.0, 1.0, 0.0)))
-    v = cross(u, n)
-    h = size / 2
-    at = lambda a, b: add(centre, add(scale(u, a * h), scale(v, b * h)))
-    return quad(at(-1, -1), at(-1, 1), at(1, 1), at(1, -1))
+TUMBLER, WATER_BODY = tumbler_profiles(R, H, WALL, BOTTOM, WATER_TOP, GAP)
 
 OBJECTS = [
     ("table", quad((-0.5, 0, 0.5), (0.5, 0, 0.5), (0.5, 0, -0.5), (-0.5, 0, -0.5)), TABLE),

@@ -16,8 +16,8 @@ Standard library only (helpers in gltf_builder.py).
 """
 import os
 
-from gltf_builder import (add, build_gltf, cross, emitter, glass, lambert, lathe, look_at_camera, normalize, quad,
-                          scale, sub, with_attenuation, write_gltf)
+from gltf_builder import (build_gltf, emitter, facing_square, glass, lambert, lathe, look_at_camera, quad,
+                          tumbler_profiles, with_attenuation, write_gltf)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -36,19 +36,7 @@ MILK["extras"] = {"prism": {"medium": {
     "g": 0.0}}}
 LIGHT = emitter("light", (1.0, 1.0, 1.0), 150.0, (0.0, 0.0, 0.0))
 
-# Profiles in (radius, height), counter-clockwise (the material on the left).
-TUMBLER = [(0.0, 0.0), (R, 0.0), (R, H), (R - WALL, H), (R - WALL, BOTTOM), (0.0, BOTTOM)]
-r_l = R - WALL - GAP
-LIQUID = [(0.0, BOTTOM + GAP), (r_l, BOTTOM + GAP), (r_l, LIQUID_TOP), (0.0, LIQUID_TOP)]
-
-def facing_square(centre, target, size):
-    """A square of edge `size` at centre, its front side facing target."""
-    n = normalize(sub(target, centre))
-    u = normalize(cross(n, (0.0, 1.0, 0.0)))
-    v = cross(u, n)
-    h = size / 2
-    at = lambda a, b: add(centre, add(scale(u, a * h), scale(v, b * h)))
-    return quad(at(-1, -1), at(-1, 1), at(1, 1), at(1, -1))
+TUMBLER, LIQUID = tumbler_profiles(R, H, WALL, BOTTOM, LIQUID_TOP, GAP)
 
 def main():
     left, right = (-0.045, 0.0001, 0.0), (0.045, 0.0001, 0.0)

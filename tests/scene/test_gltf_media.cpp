@@ -18,15 +18,6 @@ using namespace prism;
 
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 const char* kVolume = R"("pbrMetallicRoughness": {"metallicFactor": 0},
                           "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
                           "KHR_materials_volume": {"thicknessFactor": 1}})";
@@ -134,7 +125,7 @@ TEST_CASE("KHR_materials_volume_scatter and extras subsurface: a colour and a di
     CHECK(d->interior.phase.g == Approx(0.2f));
   }
   const auto error = [&](const std::string& prism) {
-    return error_of([&] { load_gltf(write_scene(dir, "", prism)); });
+    return test::error_of([&] { load_gltf(write_scene(dir, "", prism)); });
   };
   CHECK(error(R"({"subsurface": {"mean_free_path": 0}})").find("positive number of metres") != std::string::npos);
   CHECK(error(R"({"subsurface": {"g": 0.5}})").find("mean_free_path") != std::string::npos);
@@ -144,7 +135,7 @@ TEST_CASE("KHR_materials_volume_scatter and extras subsurface: a colour and a di
 TEST_CASE("a bad medium gives one error naming the file, the material and the problem") {
   const auto dir = test::temp_dir("gltf_media_errors");
   const auto error = [&](const std::string& extensions, const std::string& prism, const std::string& scene = "") {
-    return error_of([&] { load_gltf(write_scene(dir, extensions, prism, scene)); });
+    return test::error_of([&] { load_gltf(write_scene(dir, extensions, prism, scene)); });
   };
   const auto has = [](const std::string& e, const std::string& part) {
     INFO(e);

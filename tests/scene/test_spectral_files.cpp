@@ -22,15 +22,6 @@ using namespace prism;
 
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 void write(const std::filesystem::path& file, const std::string& text) { std::ofstream(file) << text; }
 
 // R(θ, λ) of two conductors agree to 1e-6 at every nm of the visible and four angles.
@@ -60,7 +51,7 @@ TEST_CASE("a spectrum file: two columns, a header line and comments allowed, 0 o
 
 TEST_CASE("bad spectra are refused with one message naming what and why") {
   const auto csv = [](const std::string& text, SpectrumUse use = SpectrumUse::reflectance) {
-    return error_of([&] { parse_spectrum_csv(text, use, "paint.csv"); });
+    return test::error_of([&] { parse_spectrum_csv(text, use, "paint.csv"); });
   };
   CHECK(csv("").find("paint.csv: the table is empty") != std::string::npos);
   CHECK(csv("wavelength,value\n").find("empty") != std::string::npos);
@@ -72,13 +63,13 @@ TEST_CASE("bad spectra are refused with one message naming what and why") {
   CHECK(csv("400,0.5,7\n").find("not two numbers") != std::string::npos);
   CHECK(csv("40000000,0.5\n").find("100-100000 nm") != std::string::npos);
   const auto arg = [](const std::string& text, SpectrumUse use = SpectrumUse::emission) {
-    return error_of([&] { parse_spectrum_argument(text, use, "--env-spectrum"); });
+    return test::error_of([&] { parse_spectrum_argument(text, use, "--env-spectrum"); });
   };
   CHECK(arg("D66").find("neither a named spectrum") != std::string::npos);
   CHECK(arg("blackbody:hot").find("blackbody:KELVIN") != std::string::npos);
   CHECK(arg("blackbody:10").find("[100, 1e6] K") != std::string::npos);
   CHECK(arg("D65", SpectrumUse::reflectance).find("names an illuminant") != std::string::npos);
-  CHECK(error_of([] {
+  CHECK(test::error_of([] {
           checked_spectrum(TabulatedSpectrum({900, 950}, {1, 1}, TabulatedSpectrum::Outside::zero),
                            SpectrumUse::emission, "ir lamp");
         }).find("no luminance") != std::string::npos);
@@ -133,12 +124,12 @@ TEST_CASE("refractiveindex.info's dispersion formulas give the catalogue's glass
   const OpticalConstants cauchy = read_refractive_index(
       "DATA:\n  - type: formula 5\n    wavelength_range: 0.2 1.0\n    coefficients: 1.5 0.004 -2\n", "cauchy");
   CHECK(ior(cauchy.n, 500) == Approx(1.5 + 0.004 / 0.25).epsilon(1e-6));
-  CHECK(error_of([] {
+  CHECK(test::error_of([] {
           read_refractive_index("DATA:\n  - type: formula 12\n    wavelength_range: 0.3 1\n    coefficients: 1\n", "x");
         }).find("formula 12") != std::string::npos);
-  CHECK(error_of([] { read_refractive_index("wl,n\n0.5,1.5\n0.4,1.6\n", "y"); }).find("must increase") !=
+  CHECK(test::error_of([] { read_refractive_index("wl,n\n0.5,1.5\n0.4,1.6\n", "y"); }).find("must increase") !=
         std::string::npos);
-  CHECK(error_of([] { read_refractive_index("0.5,1.5\n", "z"); }).find("wl,n") != std::string::npos);
+  CHECK(test::error_of([] { read_refractive_index("0.5,1.5\n", "z"); }).find("wl,n") != std::string::npos);
 }
 
 TEST_CASE("a glTF material's extras take spectra, metals and glasses from tables and files in its folder") {
@@ -189,7 +180,7 @@ TEST_CASE("a glTF material's extras take spectra, metals and glasses from tables
   }
   // Bad input: one error naming the file, the material and the problem.
   const auto error = [&](const std::string& extras, const std::string& extensions = "") {
-    return error_of([&] { load(extras, extensions); });
+    return test::error_of([&] { load(extras, extensions); });
   };
   const std::string outside = (dir.parent_path() / "elsewhere.csv").string();
   write(outside, "400,0.5\n700,0.5\n");

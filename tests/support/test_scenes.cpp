@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/base/error.h"
 #include "spectral/color_pipeline.h"
 
 namespace prism::test {
@@ -187,6 +188,15 @@ std::filesystem::path temp_dir(const std::string& name) {
   std::filesystem::create_directories(dir);
   made.dirs.insert(dir);
   return dir;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
 }
 
 int run_prism(const std::string& arguments, std::string* err, std::string* out) {

@@ -2,6 +2,7 @@
 // Scenes, cameras and helpers built in code for the test suites.
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,9 @@ std::string base64(const std::vector<unsigned char>& bytes);
 // A fresh empty folder for a test's files, removed when the test program ends (kept when the
 // environment sets PRISM_KEEP_TEST_DIRS, to look at them).
 std::filesystem::path temp_dir(const std::string& name);
+
+// The message of the prism::Error that f throws, or "(no error)".
+std::string error_of(const std::function<void()>& f);
 
 // Runs the prism executable with arguments; returns its exit code, stderr in `err` and stdout
 // in `out` when given.
